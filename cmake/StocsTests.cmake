@@ -1,0 +1,44 @@
+# Unit and data tests. Under catkin they are catkin gtests (built by `make tests`, run by
+# `catkin_make run_tests`); in a plain CMake build they are ctest tests.
+if(STOCS_DATASETS_DIR STREQUAL "" AND DEFINED ENV{STOCS_DATASETS})
+  set(STOCS_DATASETS_DIR $ENV{STOCS_DATASETS})
+endif()
+
+if(STOCS_CATKIN)
+  if(NOT CATKIN_ENABLE_TESTING)
+    return()
+  endif()
+else()
+  include(CTest)
+  if(NOT BUILD_TESTING)
+    return()
+  endif()
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+
+# stocs_add_gtest(NAME SOURCES...): a gtest linked to the core, with STOCS_DATASETS in its environment.
+function(stocs_add_gtest name)
+  if(STOCS_CATKIN)
+    catkin_add_gtest(${name} ${ARGN} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    target_link_libraries(${name} GTest::gtest_main)  # catkin links gtest only
+  else()
+    add_executable(${name} ${ARGN})
+    target_link_libraries(${name} GTest::gtest_main)
+    gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+      PROPERTIES ENVIRONMENT "STOCS_DATASETS=${STOCS_DATASETS_DIR}" DISCOVERY_TIMEOUT 60)
+  endif()
+  target_link_libraries(${name} stocs_core)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/src/core)
+  target_compile_definitions(${name} PRIVATE
+    STOCS_DATASETS_DEFAULT="${STOCS_DATASETS_DIR}"
+    STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
+    STOCS_TOOL_PATH="$<TARGET_FILE:stocs>")
+  add_dependencies(${name} stocs)
+endfunction()
+
+file(GLOB STOCS_UNIT_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/unit/test_*.cpp)
+foreach(src ${STOCS_UNIT_TESTS})
+  get_filename_component(name ${src} NAME_WE)
+  stocs_add_gtest(${name} ${src} ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
+endforeach()

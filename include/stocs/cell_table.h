@@ -1,0 +1,68 @@
+#pragma once
+// Open-addressing hash table from packed voxel cell keys (voxel_key.h) to ranges of an array: the
+// index structure behind PointGrid and NeighbourhoodGrid. Linear probing on a power-of-two table at
+// most half full; no deletion, no allocation after reserve().
+
+#include <cstdint>
+#include <vector>
+
+namespace stocs {
+
+class CellTable {
+ public:
+  struct Range {
+    uint32_t begin = 0, end = 0;
+  };
+
+  /// Empties the table and sizes it for up to `cells` keys.
+  void reserve(size_t cells) {
+    size_t capacity = 16;
+    shift_ = 60;
+    while (capacity < 2 * cells) {
+      capacity *= 2;
+      --shift_;
+    }
+    mask_ = capacity - 1;
+    keys_.assign(capacity, kEmpty);
+    ranges_.assign(capacity, Range{});
+  }
+
+  /// The range of `key`, inserted empty if absent (the table must have room).
+  Range& findOrInsert(uint64_t key) {
+    for (uint64_t h = hash(key);; h = (h + 1) & mask_) {
+      if (keys_[h] == key) return ranges_[h];
+      if (keys_[h] == kEmpty) {
+        keys_[h] = key;
+        return ranges_[h];
+      }
+    }
+  }
+
+  /// The range of `key`, or nullptr.
+  const Range* find(uint64_t key) const {
+    if (keys_.empty()) return nullptr;
+    for (uint64_t h = hash(key);; h = (h + 1) & mask_) {
+      if (keys_[h] == key) return &ranges_[h];
+      if (keys_[h] == kEmpty) return nullptr;
+    }
+  }
+
+  /// Calls f(range) for every occupied slot, in slot order.
+  template <class F>
+  void forEachRange(F&& f) {
+    for (size_t h = 0; h < keys_.size(); ++h) {
+      if (keys_[h] != kEmpty) f(ranges_[h]);
+    }
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~0ull;
+  uint64_t hash(uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> shift_; }
+
+  std::vector<uint64_t> keys_;
+  std::vector<Range> ranges_;
+  uint64_t mask_ = 0;
+  int shift_ = 64;
+};
+
+}  // namespace stocs

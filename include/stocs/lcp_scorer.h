@@ -1,0 +1,63 @@
+#pragma once
+// Stage 4 of StoCS: verification by the paper's alignment objective
+//   f(m_i, T, S_k) = pi_k(s*) if |T(m_i) - s*| < delta_s and T(N(m_i)) . N(s*) > cos(delta_n), else
+//   0
+// summed over the model points, where s* is the segment point closest to T(m_i).
+// With instance regions, the segment of a hypothesis is the region its base was drawn from: s* is
+// searched among that region's points only.
+
+#include <Eigen/Geometry>
+#include <limits>
+
+#include "stocs/neighbourhood_grid.h"
+#include "stocs/object_model.h"
+#include "stocs/soft_segment.h"
+
+namespace stocs {
+
+struct LcpParams {
+  float distance = 0.005f;         ///< delta_s, metres
+  float normal_angle_deg = 30.0f;  ///< delta_n as an angle: normals must agree within it
+
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+struct LcpDetail {
+  float score = 0;            ///< the objective: sum of pi_k(s*) over matched model points
+  int matched = 0;            ///< model points that contributed
+  int facing = 0;             ///< model points whose transformed normal faces the camera
+  float mean_confidence = 0;  ///< mean network probability of the matched segment points
+};
+
+class LcpScorer {
+ public:
+  LcpScorer(const SoftSegment& segment, const LcpParams& params);
+
+  /// The objective for `pose` (model to camera) against the points of `region` (-1: all points).
+  /// When the remaining model points cannot lift the score to at least `must_reach`, stops early
+  /// and returns a negative value; the argmax over hypotheses is unchanged by this.
+  float score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1,
+              float must_reach = -std::numeric_limits<float>::infinity()) const;
+
+  /// The objective with its parts (no early stop).
+  LcpDetail detail(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1) const;
+
+  /// Index of the segment point of `region` (-1: any) closest to p within delta_s, or -1.
+  int closest(const Eigen::Vector3f& p, int region) const {
+    return grid_.closest(p, [&](int i) { return region < 0 || segment_.region[i] == region; });
+  }
+
+  const SoftSegment& segment() const { return segment_; }
+  const LcpParams& params() const { return params_; }
+
+ private:
+  const SoftSegment& segment_;
+  LcpParams params_;
+  NeighbourhoodGrid grid_;
+  float cos_normal_;
+  float sin_normal_;  // bound of n.v for a model point that can still match (see score())
+  float max_probability_ = 0;
+};
+
+}  // namespace stocs

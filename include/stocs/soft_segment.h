@@ -1,0 +1,59 @@
+#pragma once
+// The soft segment of one object (paper eqs. 1-3): the scene points whose class probability exceeds
+// epsilon, each with a normal and the normalised probability pi_k.
+//
+// Points are voxel centroids (default 5 mm, the authors' scene resolution): a voxel's confidence is
+// the mean probability of its pixels and its normal is estimated at the pixel nearest its centroid.
+// This bounds the work of every later stage by the object's surface area rather than by its
+// distance to the camera.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "stocs/normals.h"
+#include "stocs/organized_cloud.h"
+
+namespace cv {
+class Mat;
+}
+
+namespace stocs {
+
+struct SoftSegmentParams {
+  float min_probability = 0.1f;  ///< epsilon of eq. (2); pixels at or below it are left out
+  float voxel_size = 0.005f;     ///< metres; 0 keeps every pixel as a point
+  OrganizedNormalParams normals;
+
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+struct SoftSegment {
+  std::vector<Eigen::Vector3f> points;   ///< camera optical frame, metres
+  std::vector<Eigen::Vector3f> normals;  ///< unit, facing the camera
+  std::vector<float> probability;        ///< pi_k of eq. (3): sums to 1
+  std::vector<float> confidence;         ///< network probability, in (epsilon, 1]
+  std::vector<int> pixel;                ///< representative pixel index (row-major)
+  /// Instance region of each point when a boundary map was applied (see labelRegions): points of
+  /// one region belong to one object instance; -1 marks points on a boundary. Empty otherwise.
+  std::vector<int> region;
+
+  size_t size() const { return points.size(); }
+  bool empty() const { return points.empty(); }
+};
+
+/// Builds the soft segment from an organized cloud and a CV_32FC1 probability image of the same
+/// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods. Pixels without depth
+/// or without a normal are left out; the result may be empty. Throws InputError on a size or type
+/// mismatch.
+SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
+                             float focal_px, const SoftSegmentParams& params);
+
+/// Splits the segment into instance regions with a boundary map (CV_8UC1, same size as the image;
+/// values >= 128 are object interior, lower values are boundaries, as in the StoCS `edge.png` and
+/// the BOP `edge/` extension): each region is a 4-connected component of interior pixels, and a
+/// point takes the region of its representative pixel. Throws InputError on a type or size
+/// mismatch.
+void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height);
+
+}  // namespace stocs

@@ -1,0 +1,73 @@
+#pragma once
+// StoCS (paper Algorithm 1) as a pipeline of named stages: BaseSampler -> CongruentSetMatcher ->
+// fitRigid -> LcpScorer, then optional point-to-plane refinement. The anytime loop stops after a
+// number of bases or a time budget.
+//
+// Determinism: base b draws from its own random stream streamSeed(seed, b), and ties between equal
+// scores go to the lower (base, set) index, so with a base limit and no time budget the result is
+// the same for every thread count. A time budget makes the number of bases depend on the machine.
+
+#include <Eigen/Geometry>
+
+#include "stocs/base_sampler.h"
+#include "stocs/congruent_set_matcher.h"
+#include "stocs/icp_refiner.h"
+#include "stocs/lcp_scorer.h"
+#include "stocs/model_cache.h"
+#include "stocs/soft_segment.h"
+
+namespace stocs {
+
+struct StocsParams {
+  BaseSamplerParams base;
+  CongruentSetParams congruent;
+  float max_fit_rms = 0.008f;  ///< metres: congruent sets whose rigid fit is worse are dropped
+  LcpParams lcp;
+  IcpParams icp;
+  int bases = 100;         ///< bases per object
+  double time_budget = 0;  ///< seconds per object; 0: no limit
+  uint64_t seed = 0;
+  int threads = 0;  ///< 0: all cores
+
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+/// Seconds spent in each stage, summed over threads (the paper's Table 1c breakdown).
+struct StageSeconds {
+  double sampling = 0;
+  double matching = 0;
+  double verification = 0;  ///< rigid fits and scoring
+  double refinement = 0;
+};
+
+struct PoseEstimate {
+  bool found = false;
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
+  LcpDetail lcp;                                           ///< objective of the returned pose
+  bool refined = false;     ///< ICP moved the pose and did not lower the objective
+  int region = -1;          ///< instance region the pose was found in (-1: no regions)
+  int bases_tried = 0;      ///< bases started within the budget
+  int bases_sampled = 0;    ///< of those, bases actually drawn
+  int bases_with_sets = 0;  ///< of those, bases with at least one congruent set
+  long congruent_sets = 0;  ///< sets verified (after the per-base cap)
+  long hypotheses = 0;      ///< rigid fits that passed the RMS check and were scored
+  StageSeconds stages;
+  double seconds = 0;  ///< wall time of estimate()
+};
+
+class StocsEstimator {
+ public:
+  StocsEstimator(const PreparedModel& model, const StocsParams& params);
+
+  PoseEstimate estimate(const SoftSegment& segment) const;
+
+  const StocsParams& params() const { return params_; }
+
+ private:
+  const PreparedModel& model_;
+  StocsParams params_;
+  CongruentSetMatcher matcher_;
+};
+
+}  // namespace stocs

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package stocs_ros needs to build, test and run (ROS 1 from Debian).
+# Skips apt-get when everything is already installed, so repeated runs are quick.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake ccache pkg-config git
+  ros-base-dev catkin python3-catkin-pkg python3-rostest python3-roslaunch python3-rosunit
+  libpcl-ros-dev libpcl-conversions-dev libcv-bridge-dev
+  libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
+  ros-message-generation libvisualization-msgs-dev libstd-srvs-dev
+  libnodeletlib-dev libnodelet-dev libdynamic-reconfigure-config-init-mutex-dev
+  python3-dynamic-reconfigure python3-geometry-msgs python3-sensor-msgs python3-tf2-msgs
+  python3-visualization-msgs python3-std-msgs python3-numpy
+  libpcl-dev libopencv-dev libopencv-contrib-dev libeigen3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  nlohmann-json3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libnanoflann-dev
+  libxxhash-dev
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "install_deps: installing ${#missing[@]} packages: ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

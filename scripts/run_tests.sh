@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs dependencies, builds, and runs every test: the catkin gtests (unit, CLI and, when
+# STOCS_DATASETS names the real-data folder, the real-frame acceptance tests), then the same unit
+# tests in an AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core.
+# Exits non-zero when anything fails. STOCS_SKIP_SANITIZERS=1 skips the sanitizer build.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+
+"$REPO/scripts/install_deps.sh"
+if [ -n "${STOCS_DATASETS:-}" ]; then
+  echo "run_tests: real-data tests read $STOCS_DATASETS"
+else
+  echo "run_tests: STOCS_DATASETS is not set; real-data tests will be skipped"
+fi
+
+"$REPO/scripts/build.sh"
+"$REPO/scripts/build.sh" tests
+rm -rf "$WS/build/test_results"
+# run_tests exits 0 even when tests fail; catkin_test_results gives the verdict.
+catkin_make -C "$WS" -j"$JOBS" run_tests > "$WS/run_tests.log" 2>&1 || true
+if ! catkin_test_results --verbose "$WS/build/test_results"; then
+  echo "run_tests: catkin tests FAILED (log: $WS/run_tests.log)"
+  exit 1
+fi
+
+if [ "${STOCS_SKIP_SANITIZERS:-0}" != 1 ]; then
+  SAN="$REPO/build/sanitize"
+  cmake -S "$REPO" -B "$SAN" -DSTOCS_WITH_ROS=OFF -DSTOCS_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSTOCS_DATASETS_DIR="${STOCS_DATASETS:-}" > "$SAN.cmake.log" 2>&1 || { cat "$SAN.cmake.log"; exit 1; }
+  cmake --build "$SAN" -j"$JOBS"
+  # halt_on_error: any sanitizer report fails the test that triggered it.
+  ASAN_OPTIONS=detect_leaks=1:halt_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+    ctest --test-dir "$SAN" -j"$JOBS" --output-on-failure
+fi
+echo "run_tests: all tests passed"

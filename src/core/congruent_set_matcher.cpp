@@ -1,0 +1,138 @@
+#include "stocs/congruent_set_matcher.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "stocs/error.h"
+#include "stocs/point_grid.h"
+
+namespace stocs {
+namespace {
+
+struct LinePair {
+  int a, b, c, d;  // base indices: line ab and line cd
+  float t, u;      // closest points: a + t (b - a) and c + u (d - c)
+  float gap;       // distance between those closest points
+  float sin_angle;
+  bool inside;  // both closest points within their segments
+};
+
+LinePair closestPoints(const std::array<Eigen::Vector3f, 4>& p, int a, int b, int c, int d) {
+  const Eigen::Vector3f r = p[b] - p[a], s = p[d] - p[c], w = p[a] - p[c];
+  const float rr = r.dot(r), ss = s.dot(s), rs = r.dot(s), rw = r.dot(w), sw = s.dot(w);
+  const float denom = rr * ss - rs * rs;  // = |r|^2 |s|^2 sin^2
+  LinePair lp{a, b, c, d, 0, 0, 0, 0, false};
+  if (!(denom > 1e-12f * rr * ss)) return lp;  // parallel lines
+  lp.t = (rs * sw - ss * rw) / denom;
+  lp.u = (rr * sw - rs * rw) / denom;
+  lp.gap = ((p[a] + lp.t * r) - (p[c] + lp.u * s)).norm();
+  lp.sin_angle = std::sqrt(denom / (rr * ss));
+  lp.inside = lp.t >= 0 && lp.t <= 1 && lp.u >= 0 && lp.u <= 1;
+  return lp;
+}
+
+struct PairPoint {
+  uint16_t i, j;
+  Eigen::Vector3f e;
+};
+
+}  // namespace
+
+void CongruentSetParams::validate() const {
+  if (!(tolerance > 0.0f && tolerance <= 0.1f)) {
+    throw InputError(fmt::format("congruence tolerance {} m is outside (0, 0.1]", tolerance));
+  }
+  if (max_sets < 1 || max_sets > 100000) {
+    throw InputError(fmt::format("congruent sets per base {} is outside [1, 100000]", max_sets));
+  }
+  if (!(min_line_angle_deg >= 0.0f && min_line_angle_deg < 90.0f)) {
+    throw InputError(
+        fmt::format("minimum line angle {} deg is outside [0, 90)", min_line_angle_deg));
+  }
+}
+
+CongruentSetMatcher::CongruentSetMatcher(const PreparedModel& model,
+                                         const CongruentSetParams& params)
+    : model_(model),
+      params_(params),
+      min_line_sin_(std::sin(params.min_line_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
+  params_.validate();
+}
+
+size_t CongruentSetMatcher::find(const std::array<Eigen::Vector3f, 4>& points,
+                                 const std::array<Eigen::Vector3f, 4>& normals, Rng& rng,
+                                 std::vector<CongruentSet>& out) const {
+  out.clear();
+  // The split of the base into two pairs whose lines cross best: inside both segments if possible,
+  // then at the widest angle.
+  const LinePair splits[3] = {closestPoints(points, 0, 1, 2, 3), closestPoints(points, 0, 2, 1, 3),
+                              closestPoints(points, 0, 3, 1, 2)};
+  const LinePair* best = &splits[0];
+  for (const LinePair& s : splits) {
+    if (std::make_pair(s.inside, s.sin_angle) > std::make_pair(best->inside, best->sin_angle))
+      best = &s;
+  }
+  if (best->sin_angle < min_line_sin_) return 0;
+  const LinePair& lp = *best;
+
+  const auto& mp = model_.model.points;
+  std::vector<PairPoint> first, second;
+  model_.ppf_map.forEachMatch(points[lp.a], normals[lp.a], points[lp.b], normals[lp.b],
+                              [&](uint16_t i, uint16_t j) {
+                                first.push_back({i, j, mp[i] + lp.t * (mp[j] - mp[i])});
+                              });
+  if (first.empty()) return 0;
+  model_.ppf_map.forEachMatch(points[lp.c], normals[lp.c], points[lp.d], normals[lp.d],
+                              [&](uint16_t k, uint16_t l) {
+                                second.push_back({k, l, mp[k] + lp.u * (mp[l] - mp[k])});
+                              });
+  if (second.empty()) return 0;
+
+  // Six base distances; a congruent set matches each within the tolerance.
+  const float tol = params_.tolerance;
+  float base_dist[4][4];
+  for (int x = 0; x < 4; ++x) {
+    for (int y = 0; y < 4; ++y) base_dist[x][y] = (points[x] - points[y]).norm();
+  }
+  auto agrees = [&](int x, int y, uint16_t mx, uint16_t my) {
+    return std::abs((mp[mx] - mp[my]).norm() - base_dist[x][y]) <= tol;
+  };
+
+  std::vector<Eigen::Vector3f> second_points;
+  second_points.reserve(second.size());
+  for (const PairPoint& p : second) second_points.push_back(p.e);
+  const float radius = lp.gap + tol;
+  const PointGrid grid(second_points, radius);
+  // First pairs are visited in a seeded random order and the search stops at the cap: the sets kept
+  // are a random sample without enumerating every set of a very ambiguous (e.g. planar) base.
+  for (size_t k = first.size(); k > 1; --k) {
+    std::swap(first[k - 1], first[uniformIndex(rng, static_cast<uint32_t>(k))]);
+  }
+  const size_t cap = static_cast<size_t>(params_.max_sets);
+  for (const PairPoint& f : first) {
+    if (out.size() >= cap) break;
+    if (!agrees(lp.a, lp.b, f.i, f.j)) continue;
+    grid.forEachWithin(f.e, radius, [&](int s_index, float) {
+      const PairPoint& s = second[s_index];
+      if (out.size() >= cap) return;
+      if (s.i == f.i || s.i == f.j || s.j == f.i || s.j == f.j) return;
+      if (!agrees(lp.c, lp.d, s.i, s.j) || !agrees(lp.a, lp.c, f.i, s.i) ||
+          !agrees(lp.a, lp.d, f.i, s.j) || !agrees(lp.b, lp.c, f.j, s.i) ||
+          !agrees(lp.b, lp.d, f.j, s.j)) {
+        return;
+      }
+      CongruentSet set;
+      set[lp.a] = f.i;
+      set[lp.b] = f.j;
+      set[lp.c] = s.i;
+      set[lp.d] = s.j;
+      out.push_back(set);
+    });
+  }
+  // Each (first, second) combination is visited at most once, so sets are distinct by construction.
+  return out.size();
+}
+
+}  // namespace stocs

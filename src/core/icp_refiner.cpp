@@ -1,0 +1,70 @@
+#include "stocs/icp_refiner.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "stocs/error.h"
+#include "stocs/neighbourhood_grid.h"
+
+namespace stocs {
+
+void IcpParams::validate() const {
+  if (iterations < 0 || iterations > 1000) {
+    throw InputError(fmt::format("ICP iterations {} is outside [0, 1000]", iterations));
+  }
+  if (!(max_distance > 0.0f && max_distance <= 0.2f)) {
+    throw InputError(
+        fmt::format("ICP correspondence distance {} m is outside (0, 0.2]", max_distance));
+  }
+  if (!(normal_angle_deg > 0.0f && normal_angle_deg <= 180.0f)) {
+    throw InputError(fmt::format("ICP normal angle {} deg is outside (0, 180]", normal_angle_deg));
+  }
+}
+
+Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment& segment,
+                                     const Eigen::Isometry3f& pose, int region,
+                                     const IcpParams& params) {
+  params.validate();
+  const NeighbourhoodGrid grid(segment.points, params.max_distance);
+  auto inRegion = [&](int i) { return region < 0 || segment.region[i] == region; };
+  const float cos_normal = std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f);
+  Eigen::Isometry3f current = pose;
+  for (int it = 0; it < params.iterations; ++it) {
+    // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w and a
+    // translation v has Jacobian [p x n, n].
+    Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
+    int used = 0;
+    for (size_t i = 0; i < model.size(); ++i) {
+      const Eigen::Vector3f p = current * model.points[i];
+      const Eigen::Vector3f n = current.linear() * model.normals[i];
+      if (n.dot(p) >= 0) continue;  // faces away from the camera: cannot be observed
+      const int s = grid.closest(p, inRegion);
+      if (s < 0 || n.dot(segment.normals[s]) < cos_normal) continue;
+      const Eigen::Vector3d ns = segment.normals[s].cast<double>();
+      const Eigen::Vector3d pd = p.cast<double>();
+      Eigen::Matrix<double, 6, 1> j;
+      j << pd.cross(ns), ns;
+      const double w = segment.confidence[s];
+      const double r = ns.dot(pd - segment.points[s].cast<double>());
+      jtj += w * j * j.transpose();
+      jtr += w * j * r;
+      ++used;
+    }
+    if (used < 6) break;
+    const Eigen::Matrix<double, 6, 1> x = jtj.ldlt().solve(-jtr);
+    if (!x.allFinite()) break;
+    const Eigen::Vector3d w = x.head<3>();
+    Eigen::Isometry3f step = Eigen::Isometry3f::Identity();
+    if (w.norm() > 0)
+      step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix().cast<float>();
+    step.translation() = x.tail<3>().cast<float>();
+    current = step * current;
+    if (w.norm() < 1e-5 && x.tail<3>().norm() < 1e-6) break;
+  }
+  return current;
+}
+
+}  // namespace stocs

@@ -1,0 +1,84 @@
+#include "stocs/lcp_scorer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "stocs/error.h"
+
+namespace stocs {
+
+void LcpParams::validate() const {
+  if (!(distance > 0.0f && distance <= 0.1f)) {
+    throw InputError(fmt::format("LCP distance delta_s {} m is outside (0, 0.1]", distance));
+  }
+  if (!(normal_angle_deg > 0.0f && normal_angle_deg <= 180.0f)) {
+    throw InputError(
+        fmt::format("LCP normal angle delta_n {} deg is outside (0, 180]", normal_angle_deg));
+  }
+}
+
+LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
+    : segment_(segment),
+      params_((params.validate(), params)),  // before the grid uses delta_s
+      grid_(segment.points, params.distance),
+      cos_normal_(std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)),
+      sin_normal_(params.normal_angle_deg >= 90.0f
+                      ? 1.0f
+                      : std::sin(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
+  for (float p : segment.probability) max_probability_ = std::max(max_probability_, p);
+}
+
+float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                       float must_reach) const {
+  const Eigen::Matrix3f r = pose.linear();
+  const Eigen::Vector3f t = pose.translation();
+  const size_t n = model.size();
+  // A model point can only match when its normal n satisfies n.v <= sin(delta_n) for the viewing
+  // ray v: scene normals face the camera (N.v <= 0) and must be within delta_n of n. Counting the
+  // points that pass this cheap test first gives an exact upper bound for the early stop.
+  thread_local std::vector<char> can_match;
+  can_match.resize(n);
+  size_t remaining = 0;
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3f p = r * model.points[i] + t;
+    can_match[i] = (r * model.normals[i]).dot(p) <= sin_normal_ * p.norm();
+    remaining += can_match[i];
+  }
+  float total = 0;
+  size_t visited = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!can_match[i]) continue;
+    // Check the bound every 16 candidates: cheap, and exact because it never discards a pose that
+    // could reach must_reach.
+    if ((visited++ & 15) == 0 && total + remaining * max_probability_ < must_reach) return -1.0f;
+    --remaining;
+    const Eigen::Vector3f p = r * model.points[i] + t;
+    const int s = closest(p, region);
+    if (s < 0) continue;
+    if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
+      total += segment_.probability[s];
+  }
+  return total;
+}
+
+LcpDetail LcpScorer::detail(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                            int region) const {
+  LcpDetail d;
+  double confidence = 0;
+  for (size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3f p = pose * model.points[i];
+    const Eigen::Vector3f n = pose.linear() * model.normals[i];
+    d.facing += n.dot(p) < 0;
+    const int s = closest(p, region);
+    if (s < 0 || !(n.dot(segment_.normals[s]) > cos_normal_)) continue;
+    d.score += segment_.probability[s];
+    confidence += segment_.confidence[s];
+    ++d.matched;
+  }
+  d.mean_confidence = d.matched ? static_cast<float>(confidence / d.matched) : 0.0f;
+  return d;
+}
+
+}  // namespace stocs

@@ -1,0 +1,40 @@
+#include "stocs/neighbourhood_grid.h"
+
+#include <stdexcept>
+
+namespace stocs {
+
+NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, float radius)
+    : radius_(radius), radius2_(radius * radius), inv_radius_(1.0f / radius) {
+  if (!(radius > 0)) throw std::invalid_argument("NeighbourhoodGrid radius must be positive");
+  auto forEachNeighbourCell = [&](const Eigen::Vector3f& p, auto&& f) {
+    const Eigen::Vector3i c = voxelCell(p, inv_radius_);
+    for (int dz = -1; dz <= 1; ++dz) {
+      for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) f(packVoxelCell(c + Eigen::Vector3i(dx, dy, dz)));
+      }
+    }
+  };
+  // Counting sort into the cells around each point: count (in `end`), offsets, then fill.
+  table_.reserve(27 * points.size());
+  for (const Eigen::Vector3f& p : points) {
+    forEachNeighbourCell(p, [&](uint64_t key) { ++table_.findOrInsert(key).end; });
+  }
+  uint32_t total = 0;
+  table_.forEachRange([&](CellTable::Range& r) {
+    r.begin = total;
+    total += r.end;
+    r.end = r.begin;  // fill cursor
+  });
+  points_.resize(total);
+  index_.resize(total);
+  for (size_t i = 0; i < points.size(); ++i) {
+    forEachNeighbourCell(points[i], [&](uint64_t key) {
+      CellTable::Range& r = table_.findOrInsert(key);
+      points_[r.end] = points[i];
+      index_[r.end++] = static_cast<uint32_t>(i);
+    });
+  }
+}
+
+}  // namespace stocs

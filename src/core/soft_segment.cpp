@@ -1,0 +1,130 @@
+#include "stocs/soft_segment.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <unordered_map>
+
+#include "stocs/error.h"
+#include "stocs/voxel_key.h"
+
+namespace stocs {
+namespace {
+
+struct Voxel {
+  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+  double probability_sum = 0;
+  int count = 0;
+};
+
+}  // namespace
+
+void SoftSegmentParams::validate() const {
+  if (!(min_probability >= 0.0f && min_probability < 1.0f)) {
+    throw InputError(
+        fmt::format("segment probability threshold {} is outside [0, 1)", min_probability));
+  }
+  if (!(voxel_size >= 0.0f && voxel_size <= 0.1f)) {
+    throw InputError(fmt::format("segment voxel size {} m is outside [0, 0.1]", voxel_size));
+  }
+  if (!(normals.radius > 0.0f && normals.radius <= 0.2f)) {
+    throw InputError(fmt::format("normal radius {} m is outside (0, 0.2]", normals.radius));
+  }
+  if (normals.samples_per_axis < 3 || normals.min_neighbours < 3) {
+    throw InputError("normal estimation needs at least 3 samples per axis and 3 neighbours");
+  }
+}
+
+SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
+                             float focal_px, const SoftSegmentParams& params) {
+  params.validate();
+  if (probability.type() != CV_32FC1) {
+    throw InputError("probability image must be CV_32FC1 (use toProbabilityImage)");
+  }
+  if (probability.cols != cloud.width || probability.rows != cloud.height) {
+    throw InputError(fmt::format("probability image is {}x{} but the cloud is {}x{}",
+                                 probability.cols, probability.rows, cloud.width, cloud.height));
+  }
+  if (!(focal_px > 0) || !std::isfinite(focal_px)) {
+    throw InputError(fmt::format("focal length {} px is not positive", focal_px));
+  }
+
+  // Pass 1: group the pixels above epsilon by voxel (each pixel is its own group at voxel size 0).
+  const float inv = params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f;
+  std::unordered_map<uint64_t, int> group_of_key;
+  std::vector<int> group_of_pixel(static_cast<size_t>(cloud.width) * cloud.height, -1);
+  std::vector<Voxel> groups;
+  for (int v = 0; v < cloud.height; ++v) {
+    const float* prob_row = probability.ptr<float>(v);
+    for (int u = 0; u < cloud.width; ++u) {
+      const float p = prob_row[u];
+      const int i = v * cloud.width + u;
+      if (!(p > params.min_probability) || !cloud.isValid(i)) continue;
+      int g = static_cast<int>(groups.size());
+      if (inv > 0)
+        g = group_of_key.try_emplace(packVoxelCell(voxelCell(cloud.points[i], inv)), g)
+                .first->second;
+      if (g == static_cast<int>(groups.size())) groups.emplace_back();
+      Voxel& vox = groups[g];
+      vox.sum += cloud.points[i];
+      vox.probability_sum += p;
+      ++vox.count;
+      group_of_pixel[i] = g;
+    }
+  }
+  // Pass 2: the representative of a group is its pixel nearest the centroid, which lies on the
+  // surface even when the centroid of a voxel straddling a depth edge does not.
+  std::vector<int> representative(groups.size(), -1);
+  std::vector<float> best_d2(groups.size(), std::numeric_limits<float>::max());
+  for (size_t i = 0; i < group_of_pixel.size(); ++i) {
+    const int g = group_of_pixel[i];
+    if (g < 0) continue;
+    const float d2 =
+        (cloud.points[i] - groups[g].sum / static_cast<float>(groups[g].count)).squaredNorm();
+    if (d2 < best_d2[g]) {
+      best_d2[g] = d2;
+      representative[g] = static_cast<int>(i);
+    }
+  }
+
+  SoftSegment segment;
+  double total = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {  // groups are in order of first pixel: deterministic
+    const Eigen::Vector3f normal =
+        organizedNormal(cloud, representative[g], focal_px, params.normals);
+    if (!normal.allFinite()) continue;
+    const Voxel& vox = groups[g];
+    segment.points.push_back(vox.sum / static_cast<float>(vox.count));
+    segment.normals.push_back(normal);
+    segment.confidence.push_back(static_cast<float>(vox.probability_sum / vox.count));
+    segment.pixel.push_back(representative[g]);
+    total += segment.confidence.back();
+  }
+  segment.probability.reserve(segment.size());
+  for (float c : segment.confidence) segment.probability.push_back(static_cast<float>(c / total));
+  return segment;
+}
+
+void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height) {
+  if (boundary_map.type() != CV_8UC1) {
+    throw InputError(
+        "boundary map must be a single-channel 8-bit image (255 interior, 0 boundary)");
+  }
+  if (boundary_map.cols != width || boundary_map.rows != height) {
+    throw InputError(fmt::format("boundary map is {}x{} but the image is {}x{}", boundary_map.cols,
+                                 boundary_map.rows, width, height));
+  }
+  cv::Mat interior = boundary_map >= 128;
+  cv::Mat labels;
+  cv::connectedComponents(interior, labels, 4, CV_32S);
+  segment.region.resize(segment.size());
+  for (size_t i = 0; i < segment.size(); ++i) {
+    const int label = labels.at<int>(segment.pixel[i] / width, segment.pixel[i] % width);
+    segment.region[i] = label > 0 ? label : -1;  // component 0 is the boundary itself
+  }
+}
+
+}  // namespace stocs

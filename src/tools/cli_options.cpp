@@ -1,0 +1,71 @@
+#include "cli_options.h"
+
+namespace stocs::tools {
+
+ModelCache ModelOptions::cache() const {
+  return ModelCache(no_cache ? std::filesystem::path() : std::filesystem::path(cache_dir));
+}
+
+void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
+  const std::string seg = "Soft segment (paper eqs. 1-3)";
+  cmd.add_option("--epsilon", p.segment.min_probability,
+                 "Pixels with class probability above this join the segment")
+      ->group(seg);
+  cmd.add_option("--voxel", p.segment.voxel_size, "Segment voxel size, m (0: every pixel)")
+      ->group(seg);
+  cmd.add_option("--normal-radius", p.segment.normals.radius, "Scene normal radius, m")->group(seg);
+
+  const std::string model = "Model preprocessing";
+  cmd.add_option("--model-sampling", p.model.sampling.sampling_ratio,
+                 "Poisson-disc radius of model samples, fraction of the diameter")
+      ->group(model);
+  cmd.add_option("--ppf-distance-step", p.model.ppf.distance_step, "PPF distance bin, m")
+      ->group(model);
+  cmd.add_option("--ppf-angle-step", p.model.ppf.angle_step_deg, "PPF angle bin, degrees")
+      ->group(model);
+  cmd.add_option("--ppf-min-distance", p.model.ppf.min_distance_ratio,
+                 "Shortest stored model pair, fraction of the diameter")
+      ->group(model);
+
+  const std::string stocs = "StoCS (paper section 3)";
+  cmd.add_option("--bases", p.stocs.bases, "Bases sampled per object")->group(stocs);
+  cmd.add_option("--time-budget", p.stocs.time_budget,
+                 "Seconds per object; 0: no limit (a budget makes results machine-dependent)")
+      ->group(stocs);
+  cmd.add_option("--seed", p.stocs.seed, "Random seed")->group(stocs);
+  cmd.add_option("--threads", p.stocs.threads,
+                 "Threads per object (0: all cores); results do not depend on it")
+      ->group(stocs);
+  cmd.add_option("--wide-angle", p.stocs.base.wide_angle_deg,
+                 "epsilon_1: minimum base angle at b1, degrees")
+      ->group(stocs);
+  cmd.add_option("--coplanarity", p.stocs.base.coplanarity,
+                 "epsilon_2: maximum distance of b4 from the plane of b1 b2 b3, m")
+      ->group(stocs);
+  cmd.add_option("--congruence-tolerance", p.stocs.congruent.tolerance,
+                 "Distance tolerance of congruent sets, m")
+      ->group(stocs);
+  cmd.add_option("--max-sets", p.stocs.congruent.max_sets, "Congruent sets kept per base")
+      ->group(stocs);
+  cmd.add_option("--fit-rms", p.stocs.max_fit_rms, "Largest RMS of a base-to-set rigid fit, m")
+      ->group(stocs);
+  cmd.add_option("--delta-s", p.stocs.lcp.distance, "delta_s: LCP distance threshold, m")
+      ->group(stocs);
+  cmd.add_option("--delta-n", p.stocs.lcp.normal_angle_deg, "delta_n: LCP normal angle, degrees")
+      ->group(stocs);
+  cmd.add_option("--icp", p.stocs.icp.enabled,
+                 "Refine the best pose by point-to-plane ICP (true/false)")
+      ->group(stocs);
+  cmd.add_option("--icp-iterations", p.stocs.icp.iterations, "ICP iterations")->group(stocs);
+  cmd.add_option("--icp-distance", p.stocs.icp.max_distance, "ICP correspondence radius, m")
+      ->group(stocs);
+}
+
+void addModelOptions(CLI::App& cmd, ModelOptions& options) {
+  if (options.cache_dir.empty()) options.cache_dir = ModelCache::defaultDirectory().string();
+  cmd.add_option("--model-scale", options.unit_scale, "Model units to metres (BOP: mm, 0.001)");
+  cmd.add_option("--cache-dir", options.cache_dir, "Folder for preprocessed model maps");
+  cmd.add_flag("--no-cache", options.no_cache, "Neither read nor write the model cache");
+}
+
+}  // namespace stocs::tools

@@ -1,0 +1,18 @@
+#pragma once
+// Subcommands of the `stocs` tool. Each registers its options on the app and returns the subcommand
+// with the function that runs it after parsing (exit code; InputError propagates to main).
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace stocs::tools {
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+Command registerEstimate(CLI::App& app);
+Command registerPrepare(CLI::App& app);
+
+}  // namespace stocs::tools

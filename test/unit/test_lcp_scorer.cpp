@@ -1,0 +1,106 @@
+// The alignment objective f of the paper on a hand-made case.
+#include <gtest/gtest.h>
+
+#include "stocs/error.h"
+#include "stocs/lcp_scorer.h"
+
+namespace stocs {
+namespace {
+
+// Segment: s0 and s2 face the camera; s1 is 3 mm from s0 with a sideways normal.
+SoftSegment handMadeSegment() {
+  SoftSegment s;
+  s.points = {{0, 0, 1}, {0.003f, 0, 1}, {0.1f, 0, 1}};
+  s.normals = {{0, 0, -1}, {1, 0, 0}, {0, 0, -1}};
+  s.probability = {0.5f, 0.3f, 0.2f};
+  s.confidence = {0.9f, 0.5f, 0.4f};
+  s.pixel = {0, 1, 2};
+  return s;
+}
+
+// Model (identity pose):
+//   m0 1 mm from s0, normal agrees               -> pi(s0) = 0.5
+//   m1 closest to s1 (0.2 mm), normal disagrees   -> 0, although s0 is within delta_s and agrees
+//   m2 4 mm from s2, normal agrees                -> pi(s2) = 0.2
+//   m3 6 mm from s2: beyond delta_s = 5 mm        -> 0
+//   m4 at s0, normal facing away                  -> 0
+ObjectModel handMadeModel() {
+  ObjectModel m;
+  m.points = {
+      {0.001f, 0, 1}, {0.0028f, 0, 1}, {0.1f, 0, 1.004f}, {0.1f, 0, 1.006f}, {0, 0.001f, 1}};
+  m.normals = {{0, 0, -1}, {0, 0, -1}, {0, 0, -1}, {0, 0, -1}, {0, 0, 1}};
+  m.diameter = 0.1f;
+  return m;
+}
+
+TEST(LcpScorer, HandMadeCaseMatchesThePaperObjective) {
+  const SoftSegment segment = handMadeSegment();
+  const LcpScorer scorer(segment, LcpParams{});
+  const ObjectModel model = handMadeModel();
+  EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity()), 0.7f);
+  const LcpDetail d = scorer.detail(model, Eigen::Isometry3f::Identity());
+  EXPECT_FLOAT_EQ(d.score, 0.7f);
+  EXPECT_EQ(d.matched, 2);
+  EXPECT_EQ(d.facing, 4);
+  EXPECT_FLOAT_EQ(d.mean_confidence, (0.9f + 0.4f) / 2);
+}
+
+TEST(LcpScorer, ThePoseMovesTheModel) {
+  const SoftSegment segment = handMadeSegment();
+  const LcpScorer scorer(segment, LcpParams{});
+  ObjectModel moved = handMadeModel();
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.linear() =
+      Eigen::AngleAxisf(0.8f, Eigen::Vector3f(0.3f, 1, 0.2f).normalized()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3f(0.05f, -0.02f, 0.1f);
+  for (size_t i = 0; i < moved.size(); ++i) {  // model expressed so that `pose` puts it back
+    moved.points[i] = pose.inverse() * moved.points[i];
+    moved.normals[i] = pose.linear().transpose() * moved.normals[i];
+  }
+  EXPECT_NEAR(scorer.score(moved, pose), 0.7f, 1e-6f);
+  EXPECT_FLOAT_EQ(scorer.score(moved, Eigen::Isometry3f::Identity()), 0.0f);
+}
+
+TEST(LcpScorer, ThresholdsAreParameters) {
+  const SoftSegment segment = handMadeSegment();
+  LcpParams wide;
+  wide.distance = 0.0065f;  // m3 now reaches s2
+  EXPECT_FLOAT_EQ(LcpScorer(segment, wide).score(handMadeModel(), Eigen::Isometry3f::Identity()),
+                  0.9f);
+  LcpParams lax;
+  lax.normal_angle_deg = 91;  // s1's sideways normal is 90 degrees from m1's
+  EXPECT_FLOAT_EQ(LcpScorer(segment, lax).score(handMadeModel(), Eigen::Isometry3f::Identity()),
+                  1.0f);
+}
+
+TEST(LcpScorer, EarlyStopOnlyWhenTheTargetIsOutOfReach) {
+  const SoftSegment segment = handMadeSegment();
+  const LcpScorer scorer(segment, LcpParams{});
+  const ObjectModel model = handMadeModel();
+  EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), -1, 0.7f), 0.7f);
+  EXPECT_LT(scorer.score(model, Eigen::Isometry3f::Identity(), -1, 10.0f), 0.0f);
+}
+
+TEST(LcpScorer, RegionsRestrictTheClosestPointSearch) {
+  SoftSegment segment = handMadeSegment();
+  segment.region = {1, 2, 1};
+  const LcpScorer scorer(segment, LcpParams{});
+  const ObjectModel model = handMadeModel();
+  // Region 1 holds s0 and s2: m1's closest point is now s0 (2.8 mm, normal agrees).
+  EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 1), 0.5f + 0.5f + 0.2f);
+  // Region 2 holds only s1, whose normal agrees with no model point.
+  EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 2), 0.0f);
+}
+
+TEST(LcpScorer, InvalidThresholdsAreRejected) {
+  const SoftSegment segment = handMadeSegment();
+  LcpParams bad;
+  bad.distance = 0;
+  EXPECT_THROW(LcpScorer(segment, bad), InputError);
+  bad = LcpParams{};
+  bad.normal_angle_deg = 200;
+  EXPECT_THROW(LcpScorer(segment, bad), InputError);
+}
+
+}  // namespace
+}  // namespace stocs

@@ -1,0 +1,137 @@
+// The on-disk model cache: round trip, invalidation on change, and corruption handling.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "stocs/error.h"
+#include "stocs/model_cache.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+class ModelCacheTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::scratchDir("model_cache");
+    model_file_ = (dir_ / "box.ply").string();
+    test::writePly(model_file_, test::boxMesh({100, 60, 40}));
+  }
+
+  void expectSameModel(const PreparedModel& a, const PreparedModel& b) {
+    ASSERT_EQ(a.model.size(), b.model.size());
+    EXPECT_EQ(a.model.diameter, b.model.diameter);
+    for (size_t i = 0; i < a.model.size(); ++i) {
+      ASSERT_EQ(a.model.points[i], b.model.points[i]);
+      ASSERT_EQ(a.model.normals[i], b.model.normals[i]);
+    }
+    EXPECT_EQ(a.ppf_map.pairCount(), b.ppf_map.pairCount());
+    EXPECT_EQ(a.ppf_map.occupiedKeyCount(), b.ppf_map.occupiedKeyCount());
+  }
+
+  void corrupt(const std::filesystem::path& file, std::streamoff offset) {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(offset);
+    char c = 0;
+    f.read(&c, 1);
+    f.seekp(offset);
+    c = static_cast<char>(c ^ 0x5a);
+    f.write(&c, 1);
+  }
+
+  std::filesystem::path dir_;
+  std::string model_file_;
+  ModelPreparationParams params_;
+};
+
+TEST_F(ModelCacheTest, BuildsThenLoadsTheSameModel) {
+  const ModelCache cache(dir_ / "cache");
+  CacheReport first, second;
+  const PreparedModel a = cache.load(model_file_, 0.001f, params_, &first);
+  EXPECT_EQ(first.outcome, CacheOutcome::kBuilt);
+  EXPECT_TRUE(std::filesystem::exists(first.entry));
+  const PreparedModel b = cache.load(model_file_, 0.001f, params_, &second);
+  EXPECT_EQ(second.outcome, CacheOutcome::kLoaded);
+  EXPECT_EQ(first.entry, second.entry);
+  expectSameModel(a, b);
+  expectSameModel(a, prepareModelFile(model_file_, 0.001f, params_));
+}
+
+TEST_F(ModelCacheTest, ParametersAndModelBytesSelectTheEntry) {
+  const ModelCache cache(dir_ / "cache");
+  const auto base = cache.entryPath(model_file_, 0.001f, params_);
+  ModelPreparationParams other = params_;
+  other.ppf.angle_step_deg = 12;
+  EXPECT_NE(cache.entryPath(model_file_, 0.001f, other), base);
+  EXPECT_NE(cache.entryPath(model_file_, 0.0011f, params_), base);
+  std::ofstream(model_file_, std::ios::app) << "\n";  // same geometry, other bytes
+  EXPECT_NE(cache.entryPath(model_file_, 0.001f, params_), base);
+  EXPECT_EQ(base.parent_path(), dir_ / "cache");
+}
+
+TEST_F(ModelCacheTest, CorruptPayloadIsDetectedAndRebuilt) {
+  const ModelCache cache(dir_ / "cache");
+  CacheReport report;
+  const PreparedModel a = cache.load(model_file_, 0.001f, params_, &report);
+  const auto size = std::filesystem::file_size(report.entry);
+  corrupt(report.entry, static_cast<std::streamoff>(size / 2));
+  const PreparedModel b = cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kRebuilt);
+  EXPECT_NE(report.detail.find("checksum"), std::string::npos) << report.detail;
+  expectSameModel(a, b);
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kLoaded);  // the rebuilt entry replaced the bad one
+}
+
+TEST_F(ModelCacheTest, TruncatedStaleAndForeignEntriesAreRebuilt) {
+  const ModelCache cache(dir_ / "cache");
+  CacheReport report;
+  cache.load(model_file_, 0.001f, params_, &report);
+  const auto entry = report.entry;
+
+  std::filesystem::resize_file(entry, std::filesystem::file_size(entry) - 10);
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kRebuilt);
+  EXPECT_NE(report.detail.find("truncated"), std::string::npos) << report.detail;
+
+  corrupt(entry, 8);  // format version field
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kRebuilt);
+  EXPECT_NE(report.detail.find("version"), std::string::npos) << report.detail;
+
+  std::ofstream(entry, std::ios::trunc)
+      << "not a cache file at all, but long enough to hold a header";
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kRebuilt);
+  EXPECT_NE(report.detail.find("not a stocs cache file"), std::string::npos) << report.detail;
+}
+
+TEST_F(ModelCacheTest, AnUnwritableFolderStillGivesTheModel) {
+  std::ofstream(dir_ / "blocker") << "a file where the cache folder should be";
+  const ModelCache cache(dir_ / "blocker" / "cache");
+  CacheReport report;
+  const PreparedModel m = cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kUncached);
+  EXPECT_FALSE(report.detail.empty());
+  EXPECT_GT(m.model.size(), 0u);
+}
+
+TEST_F(ModelCacheTest, DisabledCacheWritesNothingAndBadModelsStillThrow) {
+  const ModelCache cache{std::filesystem::path()};
+  CacheReport report;
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kUncached);
+  EXPECT_THROW(cache.load((dir_ / "missing.ply").string(), 0.001f, params_), InputError);
+  const ModelCache real(dir_ / "cache");
+  EXPECT_THROW(real.load((dir_ / "missing.ply").string(), 0.001f, params_), InputError);
+}
+
+TEST(ModelCacheDefault, FollowsXdgCacheHome) {
+  setenv("XDG_CACHE_HOME", "/tmp/stocs-xdg-test", 1);
+  EXPECT_EQ(ModelCache::defaultDirectory(), std::filesystem::path("/tmp/stocs-xdg-test/stocs_ros"));
+  unsetenv("XDG_CACHE_HOME");
+  EXPECT_NE(ModelCache::defaultDirectory().string().find("stocs_ros"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace stocs

@@ -1,0 +1,116 @@
+// Model preparation: even sampling and outward normals, including concave shapes.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "stocs/error.h"
+#include "stocs/normals.h"
+#include "stocs/object_model.h"
+#include "stocs/surface_sampling.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+/// A bowl (open at the top, 4 mm wall): outer surface, rim and inner surface as one closed profile.
+std::vector<Eigen::Vector2f> bowlProfile() {
+  std::vector<Eigen::Vector2f> profile;
+  const float outer = 0.06f, inner = 0.056f;
+  for (int k = 0; k <= 12; ++k) {  // outer: bottom centre up to the rim, going up the outside
+    const float a = static_cast<float>(M_PI / 2) * k / 12;
+    profile.emplace_back(outer * std::sin(a), 0.06f - outer * std::cos(a));
+  }
+  for (int k = 12; k >= 0; --k) {  // inner: rim back down to the centre, going down the inside
+    const float a = static_cast<float>(M_PI / 2) * k / 12;
+    profile.emplace_back(inner * std::sin(a), 0.06f - inner * std::cos(a));
+  }
+  return profile;
+}
+
+TEST(ObjectModel, MeshSamplesAreEvenAndFaceOutwardOnABox) {
+  const ObjectModel m = prepareModel(test::boxMesh({0.1f, 0.06f, 0.04f}), ModelSamplingParams{});
+  EXPECT_NEAR(m.diameter, std::sqrt(0.01f + 0.0036f + 0.0016f), 1e-4f);
+  EXPECT_NEAR(m.sampling_radius, 0.04f * m.diameter, 1e-6f);
+  ASSERT_GT(m.size(), 200u);
+  for (size_t i = 0; i < m.size(); ++i) {
+    EXPECT_NEAR(m.normals[i].norm(), 1.0f, 1e-4f);
+    EXPECT_GT(m.normals[i].dot(m.points[i]), 0) << "normal " << i << " points inward";
+    for (size_t j = i + 1; j < m.size(); ++j) {
+      ASSERT_GE((m.points[i] - m.points[j]).norm(), m.sampling_radius * 0.999f);
+    }
+  }
+}
+
+TEST(ObjectModel, MeshWoundInsideOutIsFlippedAsAWhole) {
+  MeshData mesh = test::boxMesh({0.1f, 0.06f, 0.04f});
+  for (Eigen::Vector3i& t : mesh.triangles) std::swap(t[1], t[2]);
+  const ObjectModel m = prepareModel(mesh, ModelSamplingParams{});
+  for (size_t i = 0; i < m.size(); ++i) ASSERT_GT(m.normals[i].dot(m.points[i]), 0);
+}
+
+TEST(ObjectModel, PointModelNormalsFaceOutOfTheSolidOfAConcaveBowl) {
+  // Only the vertices: a dense point model without faces, as BOP point models are.
+  MeshData mesh = test::latheMesh(bowlProfile(), 160);
+  Rng rng(1);
+  const OrientedPoints dense = sampleMeshSurface(mesh, 30000, rng);
+  MeshData points_only;
+  points_only.vertices = dense.points;
+  const ObjectModel m = prepareModel(points_only, ModelSamplingParams{});
+  ASSERT_GT(m.size(), 100u);
+  int inner = 0, outer = 0, wrong = 0;
+  const Eigen::Vector3f centre(0, 0, 0.06f);  // centre of the spherical bowl
+  for (size_t i = 0; i < m.size(); ++i) {
+    const float r = (m.points[i] - centre).norm();
+    const Eigen::Vector3f radial = (m.points[i] - centre) / r;
+    if (m.points[i].z() > 0.055f) continue;  // near the rim the normal turns; skip
+    if (r < 0.058f) {  // inner surface: out of the solid means toward the cavity's centre
+      ++inner;
+      wrong += m.normals[i].dot(radial) > -0.5f;
+    } else {  // outer surface: away from the centre
+      ++outer;
+      wrong += m.normals[i].dot(radial) < 0.5f;
+    }
+  }
+  EXPECT_GT(inner, 30);
+  EXPECT_GT(outer, 30);
+  EXPECT_LE(wrong, (inner + outer) / 50) << "more than 2% of the normals face the wrong way";
+}
+
+TEST(ObjectModel, TheCentroidRuleWouldFailOnTheBowl) {
+  // Guards the test above: flipping away from the centroid gets the inner surface wrong.
+  MeshData mesh = test::latheMesh(bowlProfile(), 160);
+  Rng rng(1);
+  const OrientedPoints dense = sampleMeshSurface(mesh, 5000, rng);
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (const auto& p : dense.points) centroid += p;
+  centroid /= dense.points.size();
+  int inner_wrong = 0, inner = 0;
+  for (size_t i = 0; i < dense.points.size(); ++i) {
+    const Eigen::Vector3f& p = dense.points[i];
+    if (p.z() > 0.055f || (p - Eigen::Vector3f(0, 0, 0.06f)).norm() > 0.058f) continue;
+    ++inner;
+    const Eigen::Vector3f away = p - centroid;
+    const Eigen::Vector3f n =
+        dense.normals[i].dot(away) >= 0 ? dense.normals[i] : -dense.normals[i];
+    inner_wrong += n.dot(dense.normals[i]) < 0;  // mesh normals are right by construction
+  }
+  EXPECT_GT(inner_wrong, inner / 2);
+}
+
+TEST(ObjectModel, InvalidParametersAreRejected) {
+  ModelSamplingParams p;
+  p.sampling_ratio = 0;
+  EXPECT_THROW(prepareModel(test::boxMesh({0.1f, 0.1f, 0.1f}), p), InputError);
+  EXPECT_THROW(prepareModel(MeshData{}, ModelSamplingParams{}), InputError);
+}
+
+TEST(Normals, MedianSpacingOfAGrid) {
+  std::vector<Eigen::Vector3f> grid;
+  for (int x = 0; x < 20; ++x) {
+    for (int y = 0; y < 20; ++y) grid.emplace_back(0.003f * x, 0.003f * y, 0);
+  }
+  EXPECT_NEAR(medianSpacing(grid), 0.003f, 1e-6f);
+}
+
+}  // namespace
+}  // namespace stocs

@@ -1,0 +1,187 @@
+// Depth to organized cloud, probability images, and the soft segment of eqs. (1)-(3).
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <numeric>
+#include <opencv2/core.hpp>
+
+#include "stocs/error.h"
+#include "stocs/organized_cloud.h"
+#include "stocs/probability_image.h"
+#include "stocs/soft_segment.h"
+
+namespace stocs {
+namespace {
+
+CameraIntrinsics smallCamera() {
+  CameraIntrinsics k;
+  k.fx = 120;
+  k.fy = 110;
+  k.cx = 49.5;
+  k.cy = 39.5;
+  k.width = 100;
+  k.height = 80;
+  return k;
+}
+
+TEST(OrganizedCloud, BackProjectsDepth) {
+  const CameraIntrinsics k = smallCamera();
+  cv::Mat depth(80, 100, CV_16UC1, cv::Scalar(800));
+  depth.at<uint16_t>(10, 20) = 0;
+  const OrganizedCloud cloud = cloudFromDepth(depth, k, 0.00125);  // 800 units = 1 m
+  EXPECT_EQ(cloud.validCount(), 80 * 100 - 1);
+  EXPECT_FALSE(cloud.isValid(10 * 100 + 20));
+  const Eigen::Vector3f& p = cloud.at(70, 5);
+  EXPECT_NEAR(p.z(), 1.0f, 1e-6f);
+  EXPECT_NEAR(p.x(), (70 - 49.5f) / 120, 1e-6f);
+  EXPECT_NEAR(p.y(), (5 - 39.5f) / 110, 1e-6f);
+  cv::Mat metres(80, 100, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  EXPECT_EQ(cloudFromDepth(metres, k, 1.0).validCount(), 0);
+}
+
+TEST(OrganizedCloud, RejectsWrongTypesAndSizes) {
+  const CameraIntrinsics k = smallCamera();
+  EXPECT_THROW(cloudFromDepth(cv::Mat(80, 100, CV_8UC1, cv::Scalar(1)), k, 1.0), InputError);
+  EXPECT_THROW(cloudFromDepth(cv::Mat(80, 99, CV_16UC1, cv::Scalar(1)), k, 1.0), InputError);
+  EXPECT_THROW(cloudFromDepth(cv::Mat(80, 100, CV_16UC1, cv::Scalar(1)), k, 0.0), InputError);
+  EXPECT_THROW(cloudFromDepth(cv::Mat(), k, 1.0), InputError);
+}
+
+TEST(OrganizedCloud, IntrinsicsAreRecoveredFromTheCloud) {
+  const CameraIntrinsics k = smallCamera();
+  cv::Mat depth(80, 100, CV_32FC1);
+  for (int v = 0; v < 80; ++v) {
+    for (int u = 0; u < 100; ++u)
+      depth.at<float>(v, u) = 0.8f + 0.002f * u + 0.001f * v;  // a slanted plane
+  }
+  const CameraIntrinsics r = intrinsicsFromCloud(cloudFromDepth(depth, k, 1.0));
+  EXPECT_NEAR(r.fx, k.fx, 1e-2);
+  EXPECT_NEAR(r.fy, k.fy, 1e-2);
+  EXPECT_NEAR(r.cx, k.cx, 1e-2);
+  EXPECT_NEAR(r.cy, k.cy, 1e-2);
+  EXPECT_THROW(intrinsicsFromCloud(OrganizedCloud(100, 80)), InputError);
+}
+
+TEST(ProbabilityImage, ConvertsTheUsualEncodings) {
+  cv::Mat u16(2, 2, CV_16UC1, cv::Scalar(5000));
+  EXPECT_FLOAT_EQ(toProbabilityImage(u16).at<float>(1, 1), 0.5f);
+  EXPECT_FLOAT_EQ(toProbabilityImage(u16, 5000).at<float>(0, 0), 1.0f);
+  cv::Mat u8(2, 2, CV_8UC1, cv::Scalar(255));
+  EXPECT_FLOAT_EQ(toProbabilityImage(u8).at<float>(0, 1), 1.0f);
+  cv::Mat f32(2, 2, CV_32FC1, cv::Scalar(0.25));
+  EXPECT_FLOAT_EQ(toProbabilityImage(f32).at<float>(1, 0), 0.25f);
+}
+
+TEST(ProbabilityImage, RejectsBadImagesWithTheReason) {
+  EXPECT_THROW(toProbabilityImage(cv::Mat()), InputError);
+  EXPECT_THROW(toProbabilityImage(cv::Mat(2, 2, CV_8UC3, cv::Scalar(1, 1, 1))), InputError);
+  EXPECT_THROW(toProbabilityImage(cv::Mat(2, 2, CV_16SC1, cv::Scalar(1))), InputError);
+  cv::Mat over(2, 2, CV_32FC1, cv::Scalar(0.5));
+  over.at<float>(1, 0) = 1.5f;
+  try {
+    toProbabilityImage(over);
+    FAIL() << "no error for a value above 1";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("(u=0, v=1)"), std::string::npos) << e.what();
+  }
+  cv::Mat nan(2, 2, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  EXPECT_THROW(toProbabilityImage(nan), InputError);
+  EXPECT_THROW(toProbabilityImage(cv::Mat(2, 2, CV_16UC1, cv::Scalar(10001))), InputError);
+}
+
+class SoftSegmentTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    k_ = smallCamera();
+    cloud_ = cloudFromDepth(cv::Mat(80, 100, CV_32FC1, cv::Scalar(1.0)), k_, 1.0);  // wall at 1 m
+    prob_ = cv::Mat(80, 100, CV_32FC1, cv::Scalar(0.05));                           // below epsilon
+    prob_(cv::Rect(50, 0, 50, 80)) = 0.8;
+    prob_(cv::Rect(40, 0, 10, 80)) = 0.1;  // exactly epsilon: excluded (strictly greater is kept)
+  }
+  CameraIntrinsics k_;
+  OrganizedCloud cloud_;
+  cv::Mat prob_;
+};
+
+TEST_F(SoftSegmentTest, KeepsPixelsAboveEpsilonWithNormalisedProbabilities) {
+  SoftSegmentParams params;
+  params.voxel_size = 0;
+  const SoftSegment s = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params);
+  ASSERT_EQ(s.size(), 50u * 80);
+  EXPECT_NEAR(std::accumulate(s.probability.begin(), s.probability.end(), 0.0), 1.0, 1e-5);
+  for (size_t i = 0; i < s.size(); ++i) {
+    EXPECT_GE(s.pixel[i] % 100, 50);
+    EXPECT_FLOAT_EQ(s.confidence[i], 0.8f);
+    EXPECT_LT(s.normals[i].z(), -0.999f) << "wall normal must face the camera";
+  }
+}
+
+TEST_F(SoftSegmentTest, VoxelsAverageTheirPixels) {
+  prob_(cv::Rect(50, 0, 50, 40)) = 0.4;
+  SoftSegmentParams params;
+  params.voxel_size = 0.05f;
+  const SoftSegment s = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params);
+  // The kept half spans 50 px / 120 px/m = 0.42 m by 80 px / 110 px/m = 0.73 m: about 9 x 15 voxels
+  // of 5 cm instead of 4000 pixels.
+  ASSERT_GT(s.size(), 110u);
+  EXPECT_LT(s.size(), 180u);
+  for (size_t i = 0; i < s.size(); ++i) {
+    EXPECT_NEAR(s.points[i].z(), 1.0f, 1e-5f);
+    EXPECT_GT(s.confidence[i], 0.39f);
+    EXPECT_LT(s.confidence[i], 0.81f);
+    // The representative pixel lies in the voxel.
+    EXPECT_LT((cloud_.points[s.pixel[i]] - s.points[i]).norm(), 0.05f * std::sqrt(3.0f));
+  }
+  EXPECT_NEAR(std::accumulate(s.probability.begin(), s.probability.end(), 0.0), 1.0, 1e-5);
+}
+
+TEST_F(SoftSegmentTest, PixelsWithoutDepthAreLeftOutAndEmptyIsFine) {
+  OrganizedCloud holes = cloud_;
+  for (int v = 0; v < 80; ++v) {
+    for (int u = 50; u < 100; ++u)
+      holes.points[v * 100 + u].setConstant(std::numeric_limits<float>::quiet_NaN());
+  }
+  const SoftSegment s =
+      buildSoftSegment(holes, prob_, static_cast<float>(k_.fx), SoftSegmentParams{});
+  EXPECT_TRUE(s.empty());
+}
+
+TEST_F(SoftSegmentTest, MismatchesAndBadParametersAreErrors) {
+  EXPECT_THROW(buildSoftSegment(cloud_, cv::Mat(80, 99, CV_32FC1, cv::Scalar(0.5)), 120,
+                                SoftSegmentParams{}),
+               InputError);
+  EXPECT_THROW(
+      buildSoftSegment(cloud_, cv::Mat(80, 100, CV_16UC1, cv::Scalar(1)), 120, SoftSegmentParams{}),
+      InputError);
+  EXPECT_THROW(buildSoftSegment(cloud_, prob_, 0, SoftSegmentParams{}), InputError);
+  SoftSegmentParams bad;
+  bad.min_probability = 1.0f;
+  EXPECT_THROW(buildSoftSegment(cloud_, prob_, 120, bad), InputError);
+}
+
+TEST_F(SoftSegmentTest, RegionsComeFromTheBoundaryMap) {
+  SoftSegmentParams params;
+  params.voxel_size = 0;
+  SoftSegment s = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params);
+  cv::Mat boundary(80, 100, CV_8UC1, cv::Scalar(255));
+  boundary.col(75) = 0;  // splits the segment into two instances
+  labelRegions(s, boundary, 100, 80);
+  ASSERT_EQ(s.region.size(), s.size());
+  for (size_t i = 0; i < s.size(); ++i) {
+    const int u = s.pixel[i] % 100;
+    if (u == 75) {
+      EXPECT_EQ(s.region[i], -1);
+    } else {
+      EXPECT_GE(s.region[i], 1);
+      const int left_region = s.region[std::find_if(s.pixel.begin(), s.pixel.end(),
+                                                    [](int p) { return p % 100 == 60; }) -
+                                       s.pixel.begin()];
+      EXPECT_EQ(s.region[i] == left_region, u < 75);
+    }
+  }
+  EXPECT_THROW(labelRegions(s, cv::Mat(80, 100, CV_16UC1, cv::Scalar(0)), 100, 80), InputError);
+  EXPECT_THROW(labelRegions(s, cv::Mat(81, 100, CV_8UC1, cv::Scalar(0)), 100, 80), InputError);
+}
+
+}  // namespace
+}  // namespace stocs

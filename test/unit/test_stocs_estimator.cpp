@@ -1,0 +1,148 @@
+// The whole pipeline on a rendered scene with a known pose: accuracy, determinism, budgets and
+// degenerate inputs.
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/error.h"
+#include "stocs/pipeline.h"
+#include "stocs/pose_metrics.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+class StocsEstimatorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    camera_.fx = camera_.fy = 300;
+    camera_.cx = 160;
+    camera_.cy = 120;
+    camera_.width = 320;
+    camera_.height = 240;
+    truth_ = test::viewingPose(0.6f);
+    Eigen::Isometry3f table = Eigen::Isometry3f::Identity();
+    table.translation() = Eigen::Vector3f(0, 0, 0.68f);
+    cv::Mat labels;
+    const cv::Mat depth = test::renderDepth(
+        {{test::asymmetricMesh(), truth_}, {test::boxMesh({0.5f, 0.4f, 0.01f}), table}}, camera_,
+        &labels);
+    cloud_ = cloudFromDepth(depth, camera_, 1.0);
+    // A soft segmentation that bleeds onto the table with a moderate probability.
+    probability_ = cv::Mat(240, 320, CV_32FC1, cv::Scalar(0));
+    for (int v = 0; v < 240; ++v) {
+      for (int u = 0; u < 320; ++u) {
+        const int l = labels.at<int>(v, u);
+        probability_.at<float>(v, u) =
+            l == 1 ? 0.9f
+                   : (l == 2 && std::abs(u - 170) < 70 && std::abs(v - 120) < 60 ? 0.3f : 0.0f);
+      }
+    }
+    model_.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+    model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
+  }
+
+  SoftSegment segment(const PipelineParams& params) const {
+    return buildSoftSegment(cloud_, probability_, static_cast<float>(camera_.fx), params.segment);
+  }
+
+  double addsOf(const PoseEstimate& e) const {
+    return addsError(model_.model.points,
+                     {e.pose.linear().cast<double>(), e.pose.translation().cast<double>()},
+                     {truth_.linear().cast<double>(), truth_.translation().cast<double>()});
+  }
+
+  CameraIntrinsics camera_;
+  Eigen::Isometry3f truth_;
+  OrganizedCloud cloud_;
+  cv::Mat probability_;
+  PreparedModel model_;
+};
+
+TEST_F(StocsEstimatorTest, FindsTheRenderedPose) {
+  PipelineParams params;
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    params.stocs.seed = seed;
+    const ObjectEstimate r =
+        estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+    ASSERT_TRUE(r.estimate.found) << "seed " << seed;
+    EXPECT_GT(r.segment_points, 100u);
+    EXPECT_LT(addsOf(r.estimate), 0.05 * model_.model.diameter) << "seed " << seed;
+    // The asymmetric block makes the pose unique: ADD (no symmetry forgiveness) is small too.
+    EXPECT_LT(addError(model_.model.points,
+                       {r.estimate.pose.linear().cast<double>(),
+                        r.estimate.pose.translation().cast<double>()},
+                       {truth_.linear().cast<double>(), truth_.translation().cast<double>()}),
+              0.05 * model_.model.diameter);
+    EXPECT_EQ(r.estimate.bases_tried, params.stocs.bases);
+    EXPECT_GT(r.estimate.hypotheses, 0);
+    EXPECT_GT(r.estimate.lcp.matched, 50);
+  }
+}
+
+TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
+  PipelineParams params;
+  params.stocs.seed = 42;
+  params.stocs.threads = 1;
+  const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  params.stocs.threads = 2;
+  const PoseEstimate two = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate again = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  ASSERT_TRUE(one.found);
+  EXPECT_EQ(one.pose.matrix(), two.pose.matrix());
+  EXPECT_EQ(two.pose.matrix(), again.pose.matrix());
+  EXPECT_EQ(one.lcp.score, two.lcp.score);
+  EXPECT_EQ(one.hypotheses, two.hypotheses);
+}
+
+TEST_F(StocsEstimatorTest, RefinementMovesTowardTheTruthAndKeepsTheObjective) {
+  PipelineParams params;
+  params.stocs.seed = 7;
+  const PoseEstimate refined = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  params.stocs.icp.enabled = false;
+  const PoseEstimate raw = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  ASSERT_TRUE(refined.found && raw.found);
+  EXPECT_TRUE(refined.refined);
+  EXPECT_FALSE(raw.refined);
+  EXPECT_GE(refined.lcp.score, 0.9f * raw.lcp.score);  // the divergence guard
+  EXPECT_LE(addsOf(refined), addsOf(raw) + 1e-4);      // and it moves toward the truth
+}
+
+TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
+  PipelineParams params;
+  params.stocs.bases = 100000;
+  params.stocs.time_budget = 0.05;
+  const PoseEstimate e = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  EXPECT_LT(e.bases_tried, 100000);
+  EXPECT_LT(e.seconds, 5.0);  // generous: the loop stops starting bases after 50 ms
+}
+
+TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
+  PipelineParams params;
+  const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
+  const ObjectEstimate r =
+      estimateObject(cloud_, static_cast<float>(camera_.fx), nothing, model_, params);
+  EXPECT_EQ(r.segment_points, 0u);
+  EXPECT_FALSE(r.estimate.found);
+  const ObjectEstimate nan_cloud = estimateObject(
+      OrganizedCloud(320, 240), static_cast<float>(camera_.fx), probability_, model_, params);
+  EXPECT_FALSE(nan_cloud.estimate.found);
+}
+
+TEST(StocsParams, OutOfRangeValuesAreRejected) {
+  StocsParams p;
+  p.bases = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.time_budget = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.threads = -2;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.icp.iterations = -1;
+  EXPECT_THROW(p.validate(), InputError);
+}
+
+}  // namespace
+}  // namespace stocs
