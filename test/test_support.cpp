@@ -9,8 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "stocs/random.h"
-#include "stocs/surface_sampling.h"
+#include "stocs/depth_renderer.h"
 
 namespace stocs::test {
 
@@ -94,32 +93,11 @@ void writePly(const std::filesystem::path& file, const MeshData& mesh, float sca
 
 cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsics& camera,
                     cv::Mat* labels) {
-  cv::Mat depth(camera.height, camera.width, CV_32FC1, cv::Scalar(0));
-  cv::Mat label(camera.height, camera.width, CV_32SC1, cv::Scalar(0));
-  Rng rng(11);
-  for (size_t o = 0; o < objects.size(); ++o) {
-    const float z = std::max(0.1f, objects[o].pose.translation().z());
-    const double footprint = z / camera.fx;  // metres per pixel at the object's distance
-    const size_t count =
-        static_cast<size_t>(8.0 * meshArea(objects[o].mesh) / (footprint * footprint));
-    const OrientedPoints samples =
-        sampleMeshSurface(objects[o].mesh, std::min<size_t>(count, 4000000), rng);
-    for (const Eigen::Vector3f& p_model : samples.points) {
-      const Eigen::Vector3f p = objects[o].pose * p_model;
-      if (p.z() <= 0) continue;
-      const Eigen::Vector2f uv = camera.project(p);
-      const int u = static_cast<int>(std::lround(uv.x())),
-                v = static_cast<int>(std::lround(uv.y()));
-      if (u < 0 || v < 0 || u >= camera.width || v >= camera.height) continue;
-      float& d = depth.at<float>(v, u);
-      if (d == 0 || p.z() < d) {
-        d = p.z();
-        label.at<int>(v, u) = static_cast<int>(o) + 1;
-      }
-    }
-  }
-  if (labels) *labels = label;
-  return depth;
+  DepthRenderer renderer(camera);
+  for (size_t o = 0; o < objects.size(); ++o)
+    renderer.draw(objects[o].mesh, objects[o].pose, static_cast<int>(o) + 1);
+  if (labels) *labels = renderer.labels().clone();
+  return renderer.depth().clone();
 }
 
 MeshData asymmetricMesh() {

@@ -1,0 +1,82 @@
+// The z-buffer rasteriser: depth, coverage, normals and occlusion against hand-computed values.
+#include <gtest/gtest.h>
+
+#include "stocs/depth_renderer.h"
+#include "stocs/error.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+CameraIntrinsics camera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 200;
+  k.cx = 79.5;
+  k.cy = 59.5;
+  k.width = 160;
+  k.height = 120;
+  return k;
+}
+
+Eigen::Isometry3f at(float x, float y, float z) {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.translation() = Eigen::Vector3f(x, y, z);
+  return pose;
+}
+
+TEST(DepthRenderer, AFrontoParallelBoxFaceHasItsDepthAndProjectedArea) {
+  DepthRenderer r(camera());
+  // A 10 x 10 x 2 cm box whose front face is at z = 1 m - 1 cm.
+  r.draw(test::boxMesh({0.1f, 0.1f, 0.02f}), at(0, 0, 1.0f), 7);
+  EXPECT_NEAR(r.depth().at<float>(60, 80), 0.99f, 1e-5f);
+  EXPECT_EQ(r.labels().at<int>(60, 80), 7);
+  const cv::Vec3f n = r.normals().at<cv::Vec3f>(60, 80);
+  EXPECT_NEAR(n[2], -1.0f, 1e-5f);
+  // The face spans 0.1 m * 200 px / 0.99 m = 20.2 px per side: 20 x 20 pixel centres.
+  EXPECT_EQ(cv::countNonZero(r.labels() == 7), 20 * 20);
+  EXPECT_EQ(r.labels().at<int>(0, 0), 0);
+  EXPECT_EQ(r.depth().at<float>(0, 0), 0.0f);
+}
+
+TEST(DepthRenderer, DepthIsPerspectiveCorrectOnASlantedFace) {
+  DepthRenderer r(camera());
+  Eigen::Isometry3f pose = at(0, 0, 1.0f);
+  pose.linear() = Eigen::AngleAxisf(0.5f, Eigen::Vector3f::UnitY()).toRotationMatrix();
+  const MeshData box = test::boxMesh({0.2f, 0.2f, 0.02f});
+  r.draw(box, pose, 1);
+  // The front face is the plane n.x = d with n = R z (facing -z after the flip) through R
+  // (0,0,-0.01) + t.
+  const Eigen::Vector3f n = pose.linear() * Eigen::Vector3f(0, 0, -1);
+  const Eigen::Vector3f p0 = pose * Eigen::Vector3f(0, 0, -0.01f);
+  for (int u : {70, 80, 90}) {
+    const float z = r.depth().at<float>(60, u);
+    ASSERT_GT(z, 0);
+    const Eigen::Vector3f x((u - 79.5f) * z / 200, (60 - 59.5f) * z / 200, z);
+    EXPECT_NEAR(n.dot(x - p0), 0.0f, 1e-5f) << "u = " << u;
+  }
+}
+
+TEST(DepthRenderer, NearerObjectsHideFartherOnesInAnyOrder) {
+  for (bool near_first : {true, false}) {
+    DepthRenderer r(camera());
+    const MeshData box = test::boxMesh({0.1f, 0.1f, 0.02f});
+    if (near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
+    r.draw(box, at(0, 0, 1.0f), 1);
+    if (!near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
+    EXPECT_EQ(r.labels().at<int>(60, 80), 2);
+    EXPECT_NEAR(r.depth().at<float>(60, 80), 0.79f, 1e-5f);
+    EXPECT_GT(cv::countNonZero(r.labels() == 1), 0);  // the far box still shows on the left
+  }
+}
+
+TEST(DepthRenderer, GeometryBehindTheCameraIsSkipped) {
+  DepthRenderer r(camera());
+  r.draw(test::boxMesh({0.1f, 0.1f, 0.1f}), at(0, 0, -1.0f), 1);
+  EXPECT_EQ(cv::countNonZero(r.labels()), 0);
+  CameraIntrinsics bad = camera();
+  bad.fx = 0;
+  EXPECT_THROW(DepthRenderer{bad}, InputError);
+}
+
+}  // namespace
+}  // namespace stocs
