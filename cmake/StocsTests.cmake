@@ -28,7 +28,7 @@ function(stocs_add_gtest name)
     gtest_discover_tests(${name} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
       PROPERTIES ENVIRONMENT "STOCS_DATASETS=${STOCS_DATASETS_DIR}" DISCOVERY_TIMEOUT 60)
   endif()
-  target_link_libraries(${name} stocs_core)
+  target_link_libraries(${name} stocs_core stocs_methods)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/src/core)
   target_compile_definitions(${name} PRIVATE
     STOCS_DATASETS_DEFAULT="${STOCS_DATASETS_DIR}"

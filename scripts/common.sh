@@ -4,3 +4,5 @@ REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 export PATH="/usr/bin:/bin:$PATH"
 WS="${STOCS_WS:-$REPO/build/ws}"
 JOBS="${STOCS_JOBS:-$(nproc)}"
+# ccache keys on paths relative to the repository, so checkouts in other folders share hits.
+export CCACHE_BASEDIR="$REPO"

@@ -1,5 +1,6 @@
 // `stocs estimate`: one pose per (image, object) of a BOP dataset, written as BOP results.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <map>
@@ -11,6 +12,7 @@
 #include "stocs/bop_dataset.h"
 #include "stocs/bop_results.h"
 #include "stocs/error.h"
+#include "stocs/methods/pose_method.h"
 #include "stocs/pose_metrics.h"
 
 namespace stocs::tools {
@@ -23,6 +25,8 @@ struct EstimateOptions {
   std::vector<int> scenes;
   std::vector<int> objects;
   std::string boundaries = "auto";
+  std::string method = "stocs";
+  MethodOptions method_options;
   PipelineParams params;
   ModelOptions model;
 };
@@ -47,6 +51,7 @@ double nearestAddS(const PreparedModel& model, const RigidPose& estimate,
 
 int runEstimate(const EstimateOptions& o) {
   o.params.validate();
+  const std::unique_ptr<PoseMethod> method = makeMethod(o.method, o.method_options);
   const BopDataset dataset(o.dataset, o.split);
   const std::map<int, BopObjectInfo> info = dataset.modelsInfo();
   const ModelCache cache = o.model.cache();
@@ -97,7 +102,7 @@ int runEstimate(const EstimateOptions& o) {
       const auto start = std::chrono::steady_clock::now();
       const CameraIntrinsics k = cam->second.intrinsics(depth.cols, depth.rows);
       const OrganizedCloud cloud = cloudFromDepth(depth, k, cam->second.depth_scale / 1000.0);
-      std::map<int, ObjectEstimate> estimates;
+      std::map<int, MethodResult> estimates;
       for (int obj : objects) {
         if (probability[obj].size() != depth.size()) {
           throw InputError(fmt::format("{}: probability map is {}x{} but the depth image is {}x{}",
@@ -105,9 +110,14 @@ int runEstimate(const EstimateOptions& o) {
                                        probability[obj].cols, probability[obj].rows, depth.cols,
                                        depth.rows));
         }
-        estimates[obj] =
-            estimateObject(cloud, static_cast<float>(k.fx), probability[obj], models[obj], o.params,
-                           boundary.empty() ? nullptr : &boundary);
+        MethodInput input;
+        input.cloud = &cloud;
+        input.focal_px = static_cast<float>(k.fx);
+        input.probability = &probability[obj];
+        input.boundary = boundary.empty() ? nullptr : &boundary;
+        input.model = &models[obj];
+        input.params = &o.params;
+        estimates[obj] = method->estimate(input);
       }
       const double image_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -116,17 +126,15 @@ int runEstimate(const EstimateOptions& o) {
         ++targets;
         std::string line = fmt::format("scene {} image {} object {}: segment {} points, ", scene,
                                        im, obj, e.segment_points);
-        if (!e.estimate.found) {
+        if (!e.found) {
           fmt::print(stderr, "{}no pose found ({:.3f} s)\n", line, e.seconds);
           continue;
         }
         ++found;
-        const RigidPose pose = toBop(e.estimate.pose);
-        results.push_back({scene, im, obj, e.estimate.lcp.score, pose.R, pose.t, image_seconds});
-        line += fmt::format(
-            "score {:.4f} ({} model points matched), t [{:.1f} {:.1f} {:.1f}] mm, {:.3f} s",
-            e.estimate.lcp.score, e.estimate.lcp.matched, pose.t.x(), pose.t.y(), pose.t.z(),
-            e.seconds);
+        const RigidPose pose = toBop(e.pose);
+        results.push_back({scene, im, obj, e.score, pose.R, pose.t, image_seconds});
+        line += fmt::format("score {:.4f}, {} hypotheses, t [{:.1f} {:.1f} {:.1f}] mm, {:.3f} s",
+                            e.score, e.hypotheses, pose.t.x(), pose.t.y(), pose.t.z(), e.seconds);
         const double adds = nearestAddS(models[obj], pose, instances, obj);
         const auto it = info.find(obj);
         if (adds >= 0 && it != info.end() && it->second.diameter_mm > 0) {
@@ -165,6 +173,10 @@ Command registerEstimate(CLI::App& app) {
                   "Instance boundary maps edge/IMAGE.png: 'auto' uses them where present, 'off' "
                   "ignores them")
       ->check(CLI::IsMember({"auto", "off"}));
+  cmd->add_option("--method", o->method,
+                  "Pose estimation method: " + fmt::format("{}", fmt::join(methodNames(), ", ")));
+  cmd->add_option("--hard-threshold", o->method_options.hard_threshold,
+                  "Probability threshold of the hard segment for methods that need one");
   addModelOptions(*cmd, o->model);
   addPipelineOptions(*cmd, o->params);
   return {cmd, [o] { return runEstimate(*o); }};

@@ -28,6 +28,19 @@ TEST(Cli, EstimateWritesBopResultsCloseToTheTruth) {
   EXPECT_GT(results[0].time, 0.0);
 }
 
+TEST(Cli, EveryRegisteredMethodRunsAndUnknownOnesAreRefused) {
+  const auto root = test::scratchDir("cli_methods");
+  test::writeSyntheticBopDataset(root / "data");
+  std::string out;
+  const std::string base = kTool + " estimate --dataset " + (root / "data").string() + " --out " +
+                           (root / "r.csv").string() + " --no-cache --bases 30";
+  ASSERT_EQ(test::runCommand(base + " --method stocs-hard", out), 0) << out;
+  EXPECT_NE(out.find("1 of 1 objects found"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(base + " --method nope", out), 2);
+  EXPECT_NE(out.find("unknown method 'nope'; known methods: "), std::string::npos) << out;
+  EXPECT_NE(test::runCommand(base + " --hard-threshold 1.5", out), 0);
+}
+
 TEST(Cli, HelpListsEveryOptionWithItsDefault) {
   std::string out;
   ASSERT_EQ(test::runCommand(kTool + " estimate --help", out), 0);

@@ -1,0 +1,62 @@
+#pragma once
+// A pose estimation method run on one object in one frame, so that StoCS, its ablations and the
+// baselines are compared on exactly the same inputs (`stocs estimate --method`, `stocs bench`).
+
+#include <Eigen/Geometry>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "stocs/model_cache.h"
+#include "stocs/organized_cloud.h"
+#include "stocs/pipeline.h"
+
+namespace cv {
+class Mat;
+}
+
+namespace stocs {
+
+/// Everything a method may use for one object in one frame. Pointers are never null except
+/// `boundary`.
+struct MethodInput {
+  const OrganizedCloud* cloud = nullptr;
+  float focal_px = 0;
+  const cv::Mat* probability = nullptr;  ///< CV_32FC1 in [0, 1]
+  const cv::Mat* boundary = nullptr;     ///< optional CV_8UC1 instance boundary map
+  const PreparedModel* model = nullptr;
+  /// StoCS parameters; other methods honour the shared ones (seed, threads, time_budget, segment
+  /// voxel size and normals).
+  const PipelineParams* params = nullptr;
+};
+
+struct MethodResult {
+  bool found = false;
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera, metres
+  double score = 0;           ///< the method's own confidence (higher is better)
+  size_t segment_points = 0;  ///< points the method registered against
+  long hypotheses = 0;        ///< hypotheses verified, where the method reports it
+  double seconds = 0;         ///< wall time of estimate()
+};
+
+struct MethodOptions {
+  /// Probability threshold that turns the soft segmentation into the hard segment given to the
+  /// methods that need one (the paper's best value for its baselines).
+  float hard_threshold = 0.4f;
+};
+
+class PoseMethod {
+ public:
+  virtual ~PoseMethod() = default;
+  virtual std::string name() const = 0;
+  /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
+  virtual MethodResult estimate(const MethodInput& input) = 0;
+};
+
+/// Names `makeMethod` accepts.
+std::vector<std::string> methodNames();
+
+/// A method by name; throws InputError naming the unknown method and listing the known ones.
+std::unique_ptr<PoseMethod> makeMethod(const std::string& name, const MethodOptions& options = {});
+
+}  // namespace stocs

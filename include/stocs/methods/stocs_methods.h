@@ -1,0 +1,25 @@
+#pragma once
+
+#include "stocs/methods/pose_method.h"
+
+namespace stocs {
+
+/// StoCS on the soft segmentation (the package's method).
+class StocsMethod : public PoseMethod {
+ public:
+  std::string name() const override { return "stocs"; }
+  MethodResult estimate(const MethodInput& input) override;
+};
+
+/// Ablation: StoCS on the hard segment (probability above a threshold, uniform weights).
+class HardSegmentStocsMethod : public PoseMethod {
+ public:
+  explicit HardSegmentStocsMethod(float threshold) : threshold_(threshold) {}
+  std::string name() const override { return "stocs-hard"; }
+  MethodResult estimate(const MethodInput& input) override;
+
+ private:
+  float threshold_;
+};
+
+}  // namespace stocs

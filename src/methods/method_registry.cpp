@@ -1,0 +1,48 @@
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <functional>
+#include <map>
+
+#include "stocs/error.h"
+#include "stocs/methods/pose_method.h"
+#include "stocs/methods/stocs_methods.h"
+
+namespace stocs {
+namespace {
+
+using Factory = std::function<std::unique_ptr<PoseMethod>(const MethodOptions&)>;
+
+const std::map<std::string, Factory>& registry() {
+  static const std::map<std::string, Factory> methods = {
+      {"stocs", [](const MethodOptions&) { return std::make_unique<StocsMethod>(); }},
+      {"stocs-hard",
+       [](const MethodOptions& o) {
+         return std::make_unique<HardSegmentStocsMethod>(o.hard_threshold);
+       }},
+  };
+  return methods;
+}
+
+}  // namespace
+
+std::vector<std::string> methodNames() {
+  std::vector<std::string> names;
+  for (const auto& [name, factory] : registry()) names.push_back(name);
+  return names;
+}
+
+std::unique_ptr<PoseMethod> makeMethod(const std::string& name, const MethodOptions& options) {
+  const auto it = registry().find(name);
+  if (it == registry().end()) {
+    throw InputError(fmt::format("unknown method '{}'; known methods: {}", name,
+                                 fmt::join(methodNames(), ", ")));
+  }
+  if (!(options.hard_threshold > 0.0f && options.hard_threshold < 1.0f)) {
+    throw InputError(
+        fmt::format("hard segmentation threshold {} is outside (0, 1)", options.hard_threshold));
+  }
+  return it->second(options);
+}
+
+}  // namespace stocs
