@@ -14,6 +14,7 @@
 #include "stocs/error.h"
 #include "stocs/methods/pose_method.h"
 #include "stocs/pose_metrics.h"
+#include "stocs/probability_source.h"
 
 namespace stocs::tools {
 namespace {
@@ -26,6 +27,7 @@ struct EstimateOptions {
   std::vector<int> objects;
   std::string boundaries = "auto";
   std::string method = "stocs";
+  std::string prob = "real";
   MethodOptions method_options;
   PipelineParams params;
   ModelOptions model;
@@ -53,6 +55,8 @@ int runEstimate(const EstimateOptions& o) {
   o.params.validate();
   const std::unique_ptr<PoseMethod> method = makeMethod(o.method, o.method_options);
   const BopDataset dataset(o.dataset, o.split);
+  const std::unique_ptr<ProbabilitySource> probabilities =
+      makeProbabilitySource(o.prob, dataset, o.params.stocs.seed);
   const std::map<int, BopObjectInfo> info = dataset.modelsInfo();
   const ModelCache cache = o.model.cache();
   std::vector<int> scenes = o.scenes.empty() ? dataset.sceneIds() : o.scenes;
@@ -72,7 +76,7 @@ int runEstimate(const EstimateOptions& o) {
       std::set<int> objects;
       for (const BopGtInstance& g : instances) {
         if ((wanted.empty() || wanted.count(g.obj_id)) &&
-            std::filesystem::exists(dataset.probabilityPath(scene, im, g.obj_id))) {
+            probabilities->available(scene, im, g.obj_id)) {
           objects.insert(g.obj_id);
         }
       }
@@ -94,7 +98,7 @@ int runEstimate(const EstimateOptions& o) {
                      toString(report.outcome),
                      report.detail.empty() ? "" : " (" + report.detail + ")");
         }
-        probability[obj] = dataset.loadProbability(scene, im, obj);
+        probability[obj] = probabilities->load(scene, im, obj);
       }
       const cv::Mat depth = dataset.loadDepth(scene, im);
       const cv::Mat boundary = o.boundaries == "auto" ? dataset.loadBoundary(scene, im) : cv::Mat();
@@ -147,9 +151,9 @@ int runEstimate(const EstimateOptions& o) {
   }
   if (targets == 0) {
     throw InputError(fmt::format(
-        "dataset {}: no (image, object) pair has a probability map prob/IMAGE_OBJECT.png for the "
-        "selected scenes and objects",
-        o.dataset));
+        "dataset {}: no (image, object) pair of the selected scenes and objects has a probability "
+        "map from source '{}'",
+        o.dataset, o.prob));
   }
   writeBopResults(o.out, results);
   fmt::print(stderr, "{} of {} objects found; results in {}\n", found, targets, o.out);
@@ -175,6 +179,7 @@ Command registerEstimate(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "off"}));
   cmd->add_option("--method", o->method,
                   "Pose estimation method: " + fmt::format("{}", fmt::join(methodNames(), ", ")));
+  cmd->add_option("--prob", o->prob, "Probability maps: 'real' (the dataset's prob/ maps)");
   cmd->add_option("--hard-threshold", o->method_options.hard_threshold,
                   "Probability threshold of the hard segment for methods that need one");
   addModelOptions(*cmd, o->model);
