@@ -43,7 +43,12 @@ class BaseSampler {
   std::optional<Base> sample(Rng& rng, std::vector<std::pair<int, float>>& scratch) const;
 
  private:
+  /// A point drawn from pi_k (boundary points excluded when there are regions).
   int drawFirst(Rng& rng) const;
+  /// A point drawn from pi_k restricted to `admissible` points, or -1 when there is none.
+  template <class Admissible>
+  int drawConditional(Rng& rng, Admissible&& admissible,
+                      std::vector<std::pair<int, float>>& candidates) const;
   bool tryComplete(Rng& rng, Base& base, std::vector<std::pair<int, float>>& candidates) const;
 
   const SoftSegment& segment_;

@@ -11,6 +11,8 @@ namespace stocs {
 
 struct IcpParams {
   bool enabled = true;
+  /// The poses of this many best bases are refined and the best objective after refinement wins.
+  int candidates = 10;
   int iterations = 20;
   float max_distance = 0.01f;      ///< correspondence radius, metres
   float normal_angle_deg = 45.0f;  ///< correspondences need normals within this angle

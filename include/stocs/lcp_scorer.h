@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <unordered_map>
 
 #include "stocs/neighbourhood_grid.h"
 #include "stocs/object_model.h"
@@ -18,6 +19,12 @@ namespace stocs {
 struct LcpParams {
   float distance = 0.005f;         ///< delta_s, metres
   float normal_angle_deg = 30.0f;  ///< delta_n as an angle: normals must agree within it
+  /// Coarse-to-fine verification: after this fraction of the model points that can match, a
+  /// hypothesis whose score extrapolated to all of them is below `coarse_ratio` times the score it
+  /// must reach is dropped. Model samples are stored in random order, so the fraction seen is an
+  /// unbiased subsample. 0 disables it (then only the exact bound stops early).
+  float coarse_fraction = 0.25f;
+  float coarse_ratio = 0.5f;
 
   /// Throws InputError naming the first value out of range.
   void validate() const;
@@ -35,8 +42,9 @@ class LcpScorer {
   LcpScorer(const SoftSegment& segment, const LcpParams& params);
 
   /// The objective for `pose` (model to camera) against the points of `region` (-1: all points).
-  /// When the remaining model points cannot lift the score to at least `must_reach`, stops early
-  /// and returns a negative value; the argmax over hypotheses is unchanged by this.
+  /// Returns a negative value, having stopped early, when the remaining model points cannot lift
+  /// the score to `must_reach` (exact), or when the coarse check of LcpParams finds the hypothesis
+  /// far below it (a heuristic: see coarse_fraction).
   float score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1,
               float must_reach = -std::numeric_limits<float>::infinity()) const;
 
@@ -44,9 +52,7 @@ class LcpScorer {
   LcpDetail detail(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1) const;
 
   /// Index of the segment point of `region` (-1: any) closest to p within delta_s, or -1.
-  int closest(const Eigen::Vector3f& p, int region) const {
-    return grid_.closest(p, [&](int i) { return region < 0 || segment_.region[i] == region; });
-  }
+  int closest(const Eigen::Vector3f& p, int region) const { return gridOf(region).closest(p); }
 
   const SoftSegment& segment() const { return segment_; }
   const LcpParams& params() const { return params_; }
@@ -54,7 +60,11 @@ class LcpScorer {
  private:
   const SoftSegment& segment_;
   LcpParams params_;
-  NeighbourhoodGrid grid_;
+  const NeighbourhoodGrid& gridOf(int region) const;
+
+  NeighbourhoodGrid grid_;                                   // all points
+  std::unordered_map<int, NeighbourhoodGrid> region_grids_;  // the points of each region
+  NeighbourhoodGrid empty_;
   float cos_normal_;
   float sin_normal_;  // bound of n.v for a model point that can still match (see score())
   float max_probability_ = 0;

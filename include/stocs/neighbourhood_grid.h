@@ -16,6 +16,9 @@ class NeighbourhoodGrid {
  public:
   NeighbourhoodGrid() = default;
   NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, float radius);
+  /// Only the points whose indices are in `subset`; queries still report indices into `points`.
+  NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& subset,
+                    float radius);
 
   float radius() const { return radius_; }
 

@@ -22,7 +22,9 @@ struct ModelSamplingParams {
 };
 
 struct ObjectModel {
-  std::vector<Eigen::Vector3f> points;   ///< metres, in the model frame
+  /// Metres, in the model frame, in random order: any prefix is an unbiased subsample (the
+  /// coarse-to-fine verification relies on this).
+  std::vector<Eigen::Vector3f> points;
   std::vector<Eigen::Vector3f> normals;  ///< unit, outward
   float diameter = 0;                    ///< of the input surface, metres
   float sampling_radius = 0;             ///< Poisson-disc radius used, metres

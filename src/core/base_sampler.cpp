@@ -67,59 +67,79 @@ std::optional<Base> BaseSampler::sample(Rng& rng,
   return std::nullopt;
 }
 
+template <class Admissible>
+int BaseSampler::drawConditional(Rng& rng, Admissible&& admissible,
+                                 std::vector<std::pair<int, float>>& candidates) const {
+  // Rejection sampling: proposals from pi_k accepted when admissible are distributed exactly as
+  // pi_k restricted to the admissible points, at the cost of a few PPF checks instead of one per
+  // segment point. When admissible points are rare, the exact scan below takes over; mixing the two
+  // leaves the distribution unchanged.
+  constexpr int kProposals = 128;
+  for (int t = 0; t < kProposals; ++t) {
+    const int p = drawFirst(rng);
+    if (admissible(p)) return p;
+  }
+  candidates.clear();
+  double total = 0;
+  for (int p = 0; p < static_cast<int>(segment_.size()); ++p) {
+    const float w = static_cast<float>(cumulative_[p] - (p > 0 ? cumulative_[p - 1] : 0.0));
+    if (w > 0 && admissible(p)) {
+      candidates.emplace_back(p, w);
+      total += w;
+    }
+  }
+  return candidates.empty() ? -1 : drawWeighted(rng, candidates, total);
+}
+
 bool BaseSampler::tryComplete(Rng& rng, Base& base,
                               std::vector<std::pair<int, float>>& candidates) const {
   const auto& pts = segment_.points;
   const auto& nrm = segment_.normals;
-  const int b1 = base[0];
-  // pi(p | b1) ~ pi_k(p) phi(p, b1). Only candidates with a positive weight are carried forward, so
-  // each later step costs the number of survivors, not the segment size.
-  candidates.clear();
-  double total = 0;
   const bool regions = !segment_.region.empty();
-  for (int p = 0; p < static_cast<int>(pts.size()); ++p) {
-    if (p == b1 || (regions && segment_.region[p] != segment_.region[b1])) continue;
-    if (!map_.consistent(pts[b1], nrm[b1], pts[p], nrm[p])) continue;
-    candidates.emplace_back(p, segment_.probability[p]);
-    total += segment_.probability[p];
-  }
-  if (candidates.empty()) return false;
-  base[1] = drawWeighted(rng, candidates, total);
+  auto sameRegion = [&](int p) {
+    return !regions || segment_.region[p] == segment_.region[base[0]];
+  };
+  auto consistentWith = [&](int p, int b) {
+    return map_.consistent(pts[b], nrm[b], pts[p], nrm[p]);
+  };
+
+  // pi(p | b1) ~ pi_k(p) phi(p, b1).
+  const int b1 = base[0];
+  base[1] = drawConditional(
+      rng, [&](int p) { return p != b1 && sameRegion(p) && consistentWith(p, b1); }, candidates);
+  if (base[1] < 0) return false;
 
   // pi(p | b1, b2): also phi(p, b2) and a wide angle at b1 between b1b2 and b1p.
   const int b2 = base[1];
   const Eigen::Vector3f e12 = (pts[b2] - pts[b1]).normalized();
-  auto keep = [&](auto&& admissible) {
-    total = 0;
-    size_t w = 0;
-    for (const auto& c : candidates) {
-      if (!admissible(c.first)) continue;
-      candidates[w++] = c;
-      total += c.second;
-    }
-    candidates.resize(w);
-    return w > 0;
-  };
-  const bool found3 = keep([&](int p) {
-    if (p == b2) return false;
+  auto wideAngle = [&](int p) {
     const Eigen::Vector3f e1p = pts[p] - pts[b1];
     const float len = e1p.norm();
-    if (!(len > 0) || std::abs(e12.dot(e1p) / len) > cos_wide_) return false;
-    return map_.consistent(pts[b2], nrm[b2], pts[p], nrm[p]);
-  });
-  if (!found3) return false;
-  base[2] = drawWeighted(rng, candidates, total);
+    return len > 0 && std::abs(e12.dot(e1p) / len) <= cos_wide_;
+  };
+  base[2] = drawConditional(
+      rng,
+      [&](int p) {
+        return p != b2 && wideAngle(p) && sameRegion(p) && consistentWith(p, b1) &&
+               consistentWith(p, b2);
+      },
+      candidates);
+  if (base[2] < 0) return false;
 
-  // pi(p | b1, b2, b3): also phi(p, b3) and within epsilon_2 of the plane through b1, b2, b3.
+  // pi(p | b1, b2, b3) = pi(p | b1, b2) phi(p, b3), zero off the plane through b1, b2, b3: the
+  // wide-angle condition of the previous step carries over.
   const int b3 = base[2];
   const Eigen::Vector3f plane_normal = e12.cross(pts[b3] - pts[b1]).normalized();
-  const bool found4 = keep([&](int p) {
-    if (p == b3 || std::abs(plane_normal.dot(pts[p] - pts[b1])) > params_.coplanarity) return false;
-    return map_.consistent(pts[b3], nrm[b3], pts[p], nrm[p]);
-  });
-  if (!found4) return false;
-  base[3] = drawWeighted(rng, candidates, total);
-  return true;
+  base[3] = drawConditional(
+      rng,
+      [&](int p) {
+        return p != b2 && p != b3 &&
+               std::abs(plane_normal.dot(pts[p] - pts[b1])) <= params_.coplanarity &&
+               wideAngle(p) && sameRegion(p) && consistentWith(p, b1) && consistentWith(p, b2) &&
+               consistentWith(p, b3);
+      },
+      candidates);
+  return base[3] >= 0;
 }
 
 }  // namespace stocs

@@ -11,6 +11,9 @@
 namespace stocs {
 
 void IcpParams::validate() const {
+  if (candidates < 1 || candidates > 1000) {
+    throw InputError(fmt::format("ICP candidates {} is outside [1, 1000]", candidates));
+  }
   if (iterations < 0 || iterations > 1000) {
     throw InputError(fmt::format("ICP iterations {} is outside [0, 1000]", iterations));
   }

@@ -17,6 +17,12 @@ void LcpParams::validate() const {
     throw InputError(
         fmt::format("LCP normal angle delta_n {} deg is outside (0, 180]", normal_angle_deg));
   }
+  if (!(coarse_fraction >= 0.0f && coarse_fraction < 1.0f) ||
+      !(coarse_ratio > 0.0f && coarse_ratio <= 1.0f)) {
+    throw InputError(
+        fmt::format("coarse verification fraction {} / ratio {} are outside [0, 1) / (0, 1]",
+                    coarse_fraction, coarse_ratio));
+  }
 }
 
 LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
@@ -28,6 +34,21 @@ LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
                       ? 1.0f
                       : std::sin(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
   for (float p : segment.probability) max_probability_ = std::max(max_probability_, p);
+  // One grid per instance region, so that region-restricted searches need no per-point test.
+  std::unordered_map<int, std::vector<uint32_t>> members;
+  for (size_t i = 0; i < segment.region.size(); ++i) {
+    if (segment.region[i] >= 0) members[segment.region[i]].push_back(static_cast<uint32_t>(i));
+  }
+  for (const auto& [region, subset] : members) {
+    region_grids_.emplace(region, NeighbourhoodGrid(segment.points, subset, params.distance));
+  }
+  empty_ = NeighbourhoodGrid(segment.points, std::vector<uint32_t>{}, params.distance);
+}
+
+const NeighbourhoodGrid& LcpScorer::gridOf(int region) const {
+  if (region < 0 || segment_.region.empty()) return grid_;
+  const auto it = region_grids_.find(region);
+  return it == region_grids_.end() ? empty_ : it->second;
 }
 
 float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
@@ -46,16 +67,24 @@ float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, 
     can_match[i] = (r * model.normals[i]).dot(p) <= sin_normal_ * p.norm();
     remaining += can_match[i];
   }
+  const NeighbourhoodGrid& grid = gridOf(region);
+  const size_t facing = remaining;
+  const size_t coarse_check = static_cast<size_t>(std::ceil(params_.coarse_fraction * facing));
   float total = 0;
   size_t visited = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!can_match[i]) continue;
     // Check the bound every 16 candidates: cheap, and exact because it never discards a pose that
     // could reach must_reach.
-    if ((visited++ & 15) == 0 && total + remaining * max_probability_ < must_reach) return -1.0f;
+    if ((visited & 15) == 0 && total + remaining * max_probability_ < must_reach) return -1.0f;
+    if (visited == coarse_check && coarse_check > 0 &&
+        total * facing < params_.coarse_ratio * must_reach * visited) {
+      return -1.0f;
+    }
+    ++visited;
     --remaining;
     const Eigen::Vector3f p = r * model.points[i] + t;
-    const int s = closest(p, region);
+    const int s = grid.closest(p);
     if (s < 0) continue;
     if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
       total += segment_.probability[s];

@@ -1,10 +1,23 @@
 #include "stocs/neighbourhood_grid.h"
 
+#include <numeric>
 #include <stdexcept>
 
 namespace stocs {
 
+namespace {
+std::vector<uint32_t> allIndices(size_t n) {
+  std::vector<uint32_t> all(n);
+  std::iota(all.begin(), all.end(), 0u);
+  return all;
+}
+}  // namespace
+
 NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, float radius)
+    : NeighbourhoodGrid(points, allIndices(points.size()), radius) {}
+
+NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
+                                     const std::vector<uint32_t>& subset, float radius)
     : radius_(radius), radius2_(radius * radius), inv_radius_(1.0f / radius) {
   if (!(radius > 0)) throw std::invalid_argument("NeighbourhoodGrid radius must be positive");
   auto forEachNeighbourCell = [&](const Eigen::Vector3f& p, auto&& f) {
@@ -16,9 +29,9 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     }
   };
   // Counting sort into the cells around each point: count (in `end`), offsets, then fill.
-  table_.reserve(27 * points.size());
-  for (const Eigen::Vector3f& p : points) {
-    forEachNeighbourCell(p, [&](uint64_t key) { ++table_.findOrInsert(key).end; });
+  table_.reserve(27 * subset.size());
+  for (uint32_t i : subset) {
+    forEachNeighbourCell(points[i], [&](uint64_t key) { ++table_.findOrInsert(key).end; });
   }
   uint32_t total = 0;
   table_.forEachRange([&](CellTable::Range& r) {
@@ -28,11 +41,11 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
   });
   points_.resize(total);
   index_.resize(total);
-  for (size_t i = 0; i < points.size(); ++i) {
+  for (uint32_t i : subset) {
     forEachNeighbourCell(points[i], [&](uint64_t key) {
       CellTable::Range& r = table_.findOrInsert(key);
       points_[r.end] = points[i];
-      index_[r.end++] = static_cast<uint32_t>(i);
+      index_[r.end++] = i;
     });
   }
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <vector>
@@ -71,10 +72,14 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
 
   std::vector<BaseOutcome> outcomes(params_.bases);
   const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
+  // The K best bases go on to refinement, so a hypothesis matters when it can still beat its own
+  // base's best and the K-th best base score seen so far.
+  const size_t keep = params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
 #pragma omp parallel num_threads(threads)
   {
-    // Scores below the best this thread has seen cannot win; verification may stop early on them.
-    float thread_best = -std::numeric_limits<float>::infinity();
+    // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
+    // cannot be among the K best overall, so verification may stop early on them.
+    std::vector<float> thread_top;
     std::vector<std::pair<int, float>> scratch;
     std::vector<CongruentSet> sets;
 #pragma omp for schedule(dynamic, 1)
@@ -108,19 +113,24 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
         const std::optional<Eigen::Isometry3f> pose = fitRigid(mp, bp, params_.max_fit_rms);
         if (!pose) continue;
         ++out.hypotheses;
-        const float s = scorer.score(model, *pose, out.region, thread_best);
+        const float kth =
+            thread_top.size() < keep ? -std::numeric_limits<float>::infinity() : thread_top.front();
+        const float s = scorer.score(model, *pose, out.region, std::max(kth, out.score));
         if (s > out.score) {  // strict: the first set reaching a score keeps it
           out.score = s;
           out.pose = *pose;
         }
-        thread_best = std::max(thread_best, s);
       }
       out.stages.verification = secondsSince(t);
+      if (out.score > -std::numeric_limits<float>::infinity()) {
+        thread_top.insert(std::upper_bound(thread_top.begin(), thread_top.end(), out.score),
+                          out.score);
+        if (thread_top.size() > keep) thread_top.erase(thread_top.begin());
+      }
     }
   }
 
-  // Reduce in base order: the highest score wins, ties go to the lower base index.
-  const BaseOutcome* best = nullptr;
+  std::vector<const BaseOutcome*> ranked;
   for (const BaseOutcome& out : outcomes) {
     result.bases_tried += out.tried;
     result.bases_sampled += out.sampled;
@@ -130,24 +140,45 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;
-    if (out.score > 0 && (!best || out.score > best->score)) best = &out;
+    if (out.score > 0) ranked.push_back(&out);
   }
-  if (best) {
-    result.found = true;
-    result.pose = best->pose;
-    result.region = best->region;
-    if (params_.icp.enabled) {
-      const Clock::time_point t = Clock::now();
-      const Eigen::Isometry3f refined =
-          refinePointToPlane(model, segment, best->pose, best->region, params_.icp);
-      if (scorer.score(model, refined, best->region) >= 0.9f * best->score) {
-        result.pose = refined;
-        result.refined = !refined.isApprox(best->pose);
+  // Highest score first; ties go to the lower base index (stable sort over base order).
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const BaseOutcome* a, const BaseOutcome* b) { return a->score > b->score; });
+  if (ranked.empty()) {
+    result.seconds = secondsSince(start);
+    return result;
+  }
+  result.found = true;
+  result.pose = ranked.front()->pose;
+  result.region = ranked.front()->region;
+  if (params_.icp.enabled) {
+    // Refine the K best bases' poses and keep the best objective after refinement: a congruent
+    // set's 4-point fit is a few mm off, and at delta_s such a right pose can score below a wrong
+    // one until it is refined.
+    const Clock::time_point t = Clock::now();
+    float best_score = -1;
+    for (size_t k = 0; k < std::min(keep, ranked.size()); ++k) {
+      const BaseOutcome& candidate = *ranked[k];
+      Eigen::Isometry3f pose =
+          refinePointToPlane(model, segment, candidate.pose, candidate.region, params_.icp);
+      float score = scorer.score(model, pose, candidate.region);
+      bool refined = true;
+      if (score < 0.9f * candidate.score) {  // diverged: keep the unrefined pose
+        pose = candidate.pose;
+        score = candidate.score;
+        refined = false;
       }
-      result.stages.refinement = secondsSince(t);
+      if (score > best_score) {
+        best_score = score;
+        result.pose = pose;
+        result.region = candidate.region;
+        result.refined = refined && !pose.isApprox(candidate.pose);
+      }
     }
-    result.lcp = scorer.detail(model, result.pose, best->region);
+    result.stages.refinement = secondsSince(t);
   }
+  result.lcp = scorer.detail(model, result.pose, result.region);
   result.seconds = secondsSince(start);
   return result;
 }

@@ -56,6 +56,9 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
   cmd.add_option("--icp", p.stocs.icp.enabled,
                  "Refine the best pose by point-to-plane ICP (true/false)")
       ->group(stocs);
+  cmd.add_option("--icp-candidates", p.stocs.icp.candidates,
+                 "Poses of this many best bases are refined; the best after refinement wins")
+      ->group(stocs);
   cmd.add_option("--icp-iterations", p.stocs.icp.iterations, "ICP iterations")->group(stocs);
   cmd.add_option("--icp-distance", p.stocs.icp.max_distance, "ICP correspondence radius, m")
       ->group(stocs);

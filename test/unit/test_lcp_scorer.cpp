@@ -1,6 +1,10 @@
 // The alignment objective f of the paper on a hand-made case.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
+#include <random>
+
 #include "stocs/error.h"
 #include "stocs/lcp_scorer.h"
 
@@ -90,6 +94,57 @@ TEST(LcpScorer, RegionsRestrictTheClosestPointSearch) {
   EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 1), 0.5f + 0.5f + 0.2f);
   // Region 2 holds only s1, whose normal agrees with no model point.
   EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 2), 0.0f);
+}
+
+// A flat patch of model points in random order, half of them over the segment, and one segment
+// point far away with probability 1 so that the exact bound stays loose until the very end.
+struct HalfCoveredPatch {
+  SoftSegment segment;
+  ObjectModel model;
+  HalfCoveredPatch() {
+    for (int i = 0; i < 40; ++i) {
+      for (int j = 0; j < 40; ++j) {
+        const Eigen::Vector3f p(0.002f * i, 0.002f * j, 1.0f);
+        model.points.push_back(p);
+        model.normals.emplace_back(0, 0, -1);
+        if (i < 20) addSegmentPoint(p, 1.0f / 800);
+      }
+    }
+    addSegmentPoint({0.5f, 0, 1}, 1.0f);
+    std::vector<size_t> order(model.points.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::shuffle(order.begin(), order.end(), std::mt19937(7));
+    const ObjectModel grid = model;
+    for (size_t k = 0; k < order.size(); ++k) {
+      model.points[k] = grid.points[order[k]];
+      model.normals[k] = grid.normals[order[k]];
+    }
+    model.diameter = 0.11f;
+  }
+  void addSegmentPoint(const Eigen::Vector3f& p, float probability) {
+    segment.points.push_back(p);
+    segment.normals.emplace_back(0, 0, -1);
+    segment.probability.push_back(probability);
+    segment.confidence.push_back(probability);
+    segment.pixel.push_back(static_cast<int>(segment.pixel.size()));
+  }
+};
+
+TEST(LcpScorer, CoarseCheckDropsOnlyHypothesesFarBelowTheTarget) {
+  const HalfCoveredPatch patch;
+  const LcpScorer scorer(patch.segment, LcpParams{});
+  const Eigen::Isometry3f id = Eigen::Isometry3f::Identity();
+  const float full = scorer.detail(patch.model, id).score;
+  // 800 model points over the segment and the 2 columns within delta_s of its edge match.
+  ASSERT_NEAR(full, 880.0f / 800, 1e-4f);
+  // After a quarter of the model (about 0.27 scored) a target of 3 is far out of line: dropped,
+  // although the exact bound alone, loose here, scores it in full.
+  EXPECT_LT(scorer.score(patch.model, id, -1, 3.0f), 0.0f);
+  LcpParams exact;
+  exact.coarse_fraction = 0;
+  EXPECT_NEAR(LcpScorer(patch.segment, exact).score(patch.model, id, -1, 3.0f), full, 1e-4f);
+  // Within the coarse ratio of its target the hypothesis is scored in full.
+  EXPECT_NEAR(scorer.score(patch.model, id, -1, 1.5f), full, 1e-4f);
 }
 
 TEST(LcpScorer, InvalidThresholdsAreRejected) {

@@ -142,6 +142,15 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   p = StocsParams{};
   p.icp.iterations = -1;
   EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.icp.candidates = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.lcp.coarse_fraction = 1;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.lcp.coarse_ratio = 0;
+  EXPECT_THROW(p.validate(), InputError);
 }
 
 }  // namespace
