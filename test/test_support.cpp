@@ -111,6 +111,16 @@ MeshData asymmetricMesh() {
   return base;
 }
 
+CameraIntrinsics testCamera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 300;
+  k.cx = 160;
+  k.cy = 120;
+  k.width = 320;
+  k.height = 240;
+  return k;
+}
+
 Eigen::Isometry3f viewingPose(float distance) {
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
   pose.linear() = (Eigen::AngleAxisf(2.5f, Eigen::Vector3f::UnitX()) *
@@ -128,12 +138,7 @@ Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root) {
   fs::create_directories(root / "models");
   const MeshData mesh = asymmetricMesh();
   writePly(root / "models" / "obj_000001.ply", mesh, 1000.0f);
-  CameraIntrinsics k;
-  k.fx = k.fy = 300;
-  k.cx = 160;
-  k.cy = 120;
-  k.width = 320;
-  k.height = 240;
+  const CameraIntrinsics k = testCamera();
   const Eigen::Isometry3f pose = viewingPose(0.6f);
   cv::Mat labels;
   const cv::Mat depth = renderDepth({{mesh, pose}}, k, &labels);

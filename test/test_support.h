@@ -55,6 +55,9 @@ cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsi
 /// top.
 MeshData asymmetricMesh();
 
+/// The 320 x 240 pinhole camera (f = 300 px) of the rendered test scenes.
+CameraIntrinsics testCamera();
+
 /// A pose looking at an object `distance` metres in front of the camera, tilted so that three faces
 /// of a box show.
 Eigen::Isometry3f viewingPose(float distance);

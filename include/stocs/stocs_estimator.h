@@ -8,6 +8,7 @@
 // the same for every thread count. A time budget makes the number of bases depend on the machine.
 
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "stocs/base_sampler.h"
 #include "stocs/congruent_set_matcher.h"
@@ -24,7 +25,12 @@ struct StocsParams {
   float max_fit_rms = 0.008f;  ///< metres: congruent sets whose rigid fit is worse are dropped
   LcpParams lcp;
   IcpParams icp;
-  int bases = 100;         ///< bases per object
+  int bases = 100;  ///< bases per object
+  /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.
+  int instances = 1;
+  /// Two poses are one instance when their ADD-S distance is below this fraction of the diameter
+  /// (the success threshold of the evaluation, so symmetric look-alikes merge).
+  float instance_separation = 0.1f;
   double time_budget = 0;  ///< seconds per object; 0: no limit
   uint64_t seed = 0;
   int threads = 0;  ///< 0: all cores
@@ -41,12 +47,23 @@ struct StageSeconds {
   double refinement = 0;
 };
 
+/// One distinct pose of the object.
+struct InstancePose {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
+  LcpDetail lcp;                                           ///< objective of the pose
+  bool refined = false;  ///< ICP moved the pose and did not lower the objective
+  int region = -1;       ///< instance region the pose was found in (-1: no regions)
+};
+
 struct PoseEstimate {
   bool found = false;
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
   LcpDetail lcp;                                           ///< objective of the returned pose
-  bool refined = false;     ///< ICP moved the pose and did not lower the objective
-  int region = -1;          ///< instance region the pose was found in (-1: no regions)
+  bool refined = false;  ///< ICP moved the pose and did not lower the objective
+  int region = -1;       ///< instance region the pose was found in (-1: no regions)
+  /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
+  /// above.
+  std::vector<InstancePose> instances;
   int bases_tried = 0;      ///< bases started within the budget
   int bases_sampled = 0;    ///< of those, bases actually drawn
   int bases_with_sets = 0;  ///< of those, bases with at least one congruent set

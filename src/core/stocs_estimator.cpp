@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "stocs/error.h"
+#include "stocs/instance_separation.h"
 #include "stocs/rigid_fit.h"
 
 namespace stocs {
@@ -31,6 +33,76 @@ struct BaseOutcome {
   StageSeconds stages;
 };
 
+/// A pose with its objective, before or after refinement.
+struct Hypothesis {
+  Eigen::Isometry3f pose;
+  float score;
+  int region;
+  bool refined = false;   // ICP moved the pose and did not lower the objective
+  bool polished = false;  // refinement was tried
+};
+
+bool higherScore(const Hypothesis& a, const Hypothesis& b) {
+  return a.score > b.score;
+}
+
+/// Point-to-plane refinement of `h`, kept when it does not lower the objective by more than 10%
+/// (a diverged refinement keeps the unrefined pose).
+Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const SoftSegment& segment,
+                  const LcpScorer& scorer, const IcpParams& icp) {
+  Hypothesis out = h;
+  out.polished = true;
+  if (!icp.enabled) return out;
+  const Eigen::Isometry3f pose = refinePointToPlane(model, segment, h.pose, h.region, icp);
+  const float score = scorer.score(model, pose, h.region);
+  if (score < 0.9f * h.score) return out;
+  out.pose = pose;
+  out.score = score;
+  out.refined = !pose.isApprox(h.pose);
+  return out;
+}
+
+/// Up to `count` distinct poses from the bases' best hypotheses (`ranked`, best first). The
+/// `refined_bases` best are refined first and compete by their refined objective (a 4-point
+/// fit is a few mm off, and at delta_s such a right pose can score below a wrong one until it is
+/// refined); then greedy non-maximum suppression: a hypothesis in the same place as one already
+/// taken is skipped, and the others are refined when taken.
+std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
+                                          size_t refined_bases, size_t count,
+                                          const ObjectModel& model, const SoftSegment& segment,
+                                          const LcpScorer& scorer, const StocsParams& params) {
+  const size_t first = std::min(refined_bases, ranked.size());
+  std::vector<Hypothesis> pool;
+  for (size_t k = 0; k < first; ++k) {
+    pool.push_back(refine(ranked[k], model, segment, scorer, params.icp));
+  }
+  std::stable_sort(pool.begin(), pool.end(), higherScore);
+  pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
+
+  std::optional<InstanceSeparation> separation;
+  if (count > 1) separation.emplace(model, params.instance_separation * model.diameter);
+  std::vector<Hypothesis> taken;
+  auto isNew = [&](const Hypothesis& h) {
+    return std::none_of(taken.begin(), taken.end(),
+                        [&](const Hypothesis& t) { return separation->samePlace(h.pose, t.pose); });
+  };
+  for (Hypothesis h : pool) {
+    if (taken.size() == count) break;
+    if (!taken.empty() && !isNew(h)) continue;
+    if (!h.polished) {
+      h = refine(h, model, segment, scorer, params.icp);
+      if (!taken.empty() && !isNew(h)) continue;  // refinement moved it onto a taken instance
+    }
+    taken.push_back(h);
+  }
+  std::stable_sort(taken.begin(), taken.end(), higherScore);
+  std::vector<InstancePose> instances;
+  for (const Hypothesis& h : taken) {
+    instances.push_back({h.pose, scorer.detail(model, h.pose, h.region), h.refined, h.region});
+  }
+  return instances;
+}
+
 }  // namespace
 
 void StocsParams::validate() const {
@@ -48,6 +120,14 @@ void StocsParams::validate() const {
   }
   if (threads < 0 || threads > 256)
     throw InputError(fmt::format("threads {} is outside [0, 256]", threads));
+  if (instances < 1 || instances > 100)
+    throw InputError(fmt::format("instances {} is outside [1, 100]", instances));
+  if (!(instance_separation > 0.0f && instance_separation <= 1.0f)) {
+    throw InputError(
+        fmt::format("instance separation {} (fraction of the diameter) is outside "
+                    "(0, 1]",
+                    instance_separation));
+  }
 }
 
 StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& params)
@@ -73,8 +153,11 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
   std::vector<BaseOutcome> outcomes(params_.bases);
   const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
   // The K best bases go on to refinement, so a hypothesis matters when it can still beat its own
-  // base's best and the K-th best base score seen so far.
-  const size_t keep = params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
+  // base's best and the K-th best base score seen so far. Several instances need every base's
+  // best, as the next instance may come from any base.
+  const size_t refined_bases =
+      params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
+  const size_t keep = params_.instances > 1 ? static_cast<size_t>(params_.bases) : refined_bases;
 #pragma omp parallel num_threads(threads)
   {
     // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
@@ -130,7 +213,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
     }
   }
 
-  std::vector<const BaseOutcome*> ranked;
+  std::vector<Hypothesis> ranked;
   for (const BaseOutcome& out : outcomes) {
     result.bases_tried += out.tried;
     result.bases_sampled += out.sampled;
@@ -140,45 +223,24 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;
-    if (out.score > 0) ranked.push_back(&out);
+    if (out.score > 0) ranked.push_back({out.pose, out.score, out.region});
   }
   // Highest score first; ties go to the lower base index (stable sort over base order).
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const BaseOutcome* a, const BaseOutcome* b) { return a->score > b->score; });
+  std::stable_sort(ranked.begin(), ranked.end(), higherScore);
   if (ranked.empty()) {
     result.seconds = secondsSince(start);
     return result;
   }
+  const Clock::time_point t = Clock::now();
+  result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
+                                     model, segment, scorer, params_);
+  if (params_.icp.enabled) result.stages.refinement = secondsSince(t);
   result.found = true;
-  result.pose = ranked.front()->pose;
-  result.region = ranked.front()->region;
-  if (params_.icp.enabled) {
-    // Refine the K best bases' poses and keep the best objective after refinement: a congruent
-    // set's 4-point fit is a few mm off, and at delta_s such a right pose can score below a wrong
-    // one until it is refined.
-    const Clock::time_point t = Clock::now();
-    float best_score = -1;
-    for (size_t k = 0; k < std::min(keep, ranked.size()); ++k) {
-      const BaseOutcome& candidate = *ranked[k];
-      Eigen::Isometry3f pose =
-          refinePointToPlane(model, segment, candidate.pose, candidate.region, params_.icp);
-      float score = scorer.score(model, pose, candidate.region);
-      bool refined = true;
-      if (score < 0.9f * candidate.score) {  // diverged: keep the unrefined pose
-        pose = candidate.pose;
-        score = candidate.score;
-        refined = false;
-      }
-      if (score > best_score) {
-        best_score = score;
-        result.pose = pose;
-        result.region = candidate.region;
-        result.refined = refined && !pose.isApprox(candidate.pose);
-      }
-    }
-    result.stages.refinement = secondsSince(t);
-  }
-  result.lcp = scorer.detail(model, result.pose, result.region);
+  const InstancePose& best = result.instances.front();
+  result.pose = best.pose;
+  result.lcp = best.lcp;
+  result.refined = best.refined;
+  result.region = best.region;
   result.seconds = secondsSince(start);
   return result;
 }

@@ -11,6 +11,7 @@ MethodResult fromObjectEstimate(const ObjectEstimate& e) {
   r.found = e.estimate.found;
   r.pose = e.estimate.pose;
   r.score = e.estimate.lcp.score;
+  for (const InstancePose& i : e.estimate.instances) r.instances.push_back({i.pose, i.lcp.score});
   r.segment_points = e.segment_points;
   r.hypotheses = e.estimate.hypotheses;
   r.seconds = e.seconds;

@@ -53,6 +53,12 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(stocs);
   cmd.add_option("--delta-n", p.stocs.lcp.normal_angle_deg, "delta_n: LCP normal angle, degrees")
       ->group(stocs);
+  cmd.add_option("--instances", p.stocs.instances,
+                 "Distinct poses per object (several instances of one object in a bin)")
+      ->group(stocs);
+  cmd.add_option("--instance-separation", p.stocs.instance_separation,
+                 "Poses closer than this ADD-S, as a fraction of the diameter, are one instance")
+      ->group(stocs);
   cmd.add_option("--icp", p.stocs.icp.enabled,
                  "Refine the best pose by point-to-plane ICP (true/false)")
       ->group(stocs);

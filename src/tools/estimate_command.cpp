@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <opencv2/core.hpp>
@@ -37,16 +38,21 @@ RigidPose toBop(const Eigen::Isometry3f& pose) {
   return {pose.linear().cast<double>(), pose.translation().cast<double>() * 1000.0};
 }
 
-/// ADD-S (mm) to the nearest ground-truth instance of the object, or a negative value without one.
-double nearestAddS(const PreparedModel& model, const RigidPose& estimate,
-                   const std::vector<BopGtInstance>& instances, int obj_id) {
+/// The ground-truth instance of the object nearest to a pose by ADD-S.
+struct NearestInstance {
+  int index = -1;    ///< into the image's instances; -1 when the object has none
+  double adds = -1;  ///< mm
+};
+
+NearestInstance nearestInstance(const PreparedModel& model, const RigidPose& estimate,
+                                const std::vector<BopGtInstance>& instances, int obj_id) {
   std::vector<Eigen::Vector3f> points_mm;
   for (const Eigen::Vector3f& p : model.model.points) points_mm.push_back(p * 1000.0f);
-  double best = -1;
-  for (const BopGtInstance& g : instances) {
-    if (g.obj_id != obj_id) continue;
-    const double e = addsError(points_mm, estimate, RigidPose{g.R, g.t_mm});
-    if (best < 0 || e < best) best = e;
+  NearestInstance best;
+  for (size_t i = 0; i < instances.size(); ++i) {
+    if (instances[i].obj_id != obj_id) continue;
+    const double e = addsError(points_mm, estimate, RigidPose{instances[i].R, instances[i].t_mm});
+    if (best.index < 0 || e < best.adds) best = {static_cast<int>(i), e};
   }
   return best;
 }
@@ -135,15 +141,29 @@ int runEstimate(const EstimateOptions& o) {
           continue;
         }
         ++found;
-        const RigidPose pose = toBop(e.pose);
-        results.push_back({scene, im, obj, e.score, pose.R, pose.t, image_seconds});
-        line += fmt::format("score {:.4f}, {} hypotheses, t [{:.1f} {:.1f} {:.1f}] mm, {:.3f} s",
-                            e.score, e.hypotheses, pose.t.x(), pose.t.y(), pose.t.z(), e.seconds);
-        const double adds = nearestAddS(models[obj], pose, instances, obj);
+        const std::vector<ScoredPose> poses =
+            e.instances.empty() ? std::vector<ScoredPose>{{e.pose, e.score}} : e.instances;
         const auto it = info.find(obj);
-        if (adds >= 0 && it != info.end() && it->second.diameter_mm > 0) {
-          line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter)", adds,
-                              100.0 * adds / it->second.diameter_mm);
+        const double diameter = it != info.end() ? it->second.diameter_mm : 0;
+        std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
+        for (size_t k = 0; k < poses.size(); ++k) {
+          const RigidPose pose = toBop(poses[k].pose);
+          results.push_back({scene, im, obj, poses[k].score, pose.R, pose.t, image_seconds});
+          if (k > 0) line += fmt::format("\n  instance {}: ", k);
+          line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", poses[k].score,
+                              pose.t.x(), pose.t.y(), pose.t.z());
+          if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
+          const NearestInstance near = nearestInstance(models[obj], pose, instances, obj);
+          if (near.index < 0 || diameter <= 0) continue;
+          line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}", near.adds,
+                              100.0 * near.adds / diameter, near.index);
+          if (near.adds < 0.1 * diameter) recalled.insert(near.index);
+        }
+        const auto truths = std::count_if(instances.begin(), instances.end(),
+                                          [&](const BopGtInstance& g) { return g.obj_id == obj; });
+        if (poses.size() > 1 && truths > 0) {
+          line += fmt::format("\n  instance recall {} of {} ground-truth instances",
+                              recalled.size(), truths);
         }
         fmt::print(stderr, "{}\n", line);
       }

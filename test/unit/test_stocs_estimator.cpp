@@ -15,11 +15,7 @@ namespace {
 class StocsEstimatorTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    camera_.fx = camera_.fy = 300;
-    camera_.cx = 160;
-    camera_.cy = 120;
-    camera_.width = 320;
-    camera_.height = 240;
+    camera_ = test::testCamera();
     truth_ = test::viewingPose(0.6f);
     Eigen::Isometry3f table = Eigen::Isometry3f::Identity();
     table.translation() = Eigen::Vector3f(0, 0, 0.68f);
@@ -129,6 +125,41 @@ TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   EXPECT_FALSE(nan_cloud.estimate.found);
 }
 
+TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
+  const CameraIntrinsics camera = test::testCamera();
+  std::vector<Eigen::Isometry3f> truths = {test::viewingPose(0.6f), test::viewingPose(0.6f)};
+  truths[0].pretranslate(Eigen::Vector3f(-0.08f, 0, 0));
+  truths[1].pretranslate(Eigen::Vector3f(0.08f, 0.02f, 0));
+  cv::Mat labels;
+  const cv::Mat depth = test::renderDepth(
+      {{test::asymmetricMesh(), truths[0]}, {test::asymmetricMesh(), truths[1]}}, camera, &labels);
+  cv::Mat probability;
+  cv::Mat(labels > 0).convertTo(probability, CV_32FC1, 0.9 / 255);
+  PreparedModel model;
+  model.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+  model.ppf_map = PpfHashMap::build(model.model, PpfParams{});
+  PipelineParams params;
+  params.stocs.instances = 3;  // one more than there are: the third, if any, is not a duplicate
+  const ObjectEstimate r =
+      estimateObject(cloudFromDepth(depth, camera, 1.0), static_cast<float>(camera.fx), probability,
+                     model, params);
+  ASSERT_GE(r.estimate.instances.size(), 2u);
+  EXPECT_TRUE(r.estimate.instances[0].pose.isApprox(r.estimate.pose));
+  std::vector<int> found(truths.size(), 0);
+  for (const InstancePose& p : r.estimate.instances) {
+    for (size_t t = 0; t < truths.size(); ++t) {
+      const double adds = addsError(
+          model.model.points, {p.pose.linear().cast<double>(), p.pose.translation().cast<double>()},
+          {truths[t].linear().cast<double>(), truths[t].translation().cast<double>()});
+      found[t] += adds < 0.1 * model.model.diameter;
+    }
+  }
+  EXPECT_EQ(found, (std::vector<int>{1, 1}));  // both found, neither twice
+  for (size_t k = 1; k < r.estimate.instances.size(); ++k) {
+    EXPECT_LE(r.estimate.instances[k].lcp.score, r.estimate.instances[k - 1].lcp.score);
+  }
+}
+
 TEST(StocsParams, OutOfRangeValuesAreRejected) {
   StocsParams p;
   p.bases = 0;
@@ -150,6 +181,12 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.lcp.coarse_ratio = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.instances = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.instance_separation = 0;
   EXPECT_THROW(p.validate(), InputError);
 }
 

@@ -30,10 +30,18 @@ struct MethodInput {
   const PipelineParams* params = nullptr;
 };
 
+struct ScoredPose {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera, metres
+  double score = 0;
+};
+
 struct MethodResult {
   bool found = false;
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera, metres
-  double score = 0;           ///< the method's own confidence (higher is better)
+  double score = 0;  ///< the method's own confidence (higher is better)
+  /// Distinct poses, best first, for methods that find several instances (the first is `pose`);
+  /// empty for the others.
+  std::vector<ScoredPose> instances;
   size_t segment_points = 0;  ///< points the method registered against
   long hypotheses = 0;        ///< hypotheses verified, where the method reports it
   double seconds = 0;         ///< wall time of estimate()
