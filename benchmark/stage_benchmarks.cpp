@@ -4,63 +4,14 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
-#include <cstdlib>
-#include <filesystem>
-#include <map>
-#include <opencv2/core.hpp>
-
+#include "benchmark_frames.h"
 #include "stocs/base_sampler.h"
-#include "stocs/bop_dataset.h"
 #include "stocs/congruent_set_matcher.h"
 #include "stocs/lcp_scorer.h"
-#include "stocs/pipeline.h"
 #include "stocs/rigid_fit.h"
 
-namespace stocs {
+namespace stocs::bench {
 namespace {
-
-struct Frame {
-  OrganizedCloud cloud;
-  float focal = 0;
-  cv::Mat probability, boundary;
-  PreparedModel model;
-  SoftSegment segment;
-};
-
-PipelineParams benchmarkParams() {
-  PipelineParams p;
-  p.stocs.threads = 1;
-  return p;
-}
-
-const Frame& frame(const std::string& dataset, int scene, int image, int object) {
-  static std::map<std::string, Frame> frames;
-  auto it = frames.find(dataset);
-  if (it != frames.end()) return it->second;
-  const char* root = std::getenv("STOCS_DATASETS");
-  if (!root) throw std::runtime_error("set STOCS_DATASETS to the folder holding " + dataset);
-  const BopDataset ds(std::filesystem::path(root) / dataset);
-  Frame f;
-  const cv::Mat depth = ds.loadDepth(scene, image);
-  const BopFrameCamera cam = ds.sceneCameras(scene).at(image);
-  const CameraIntrinsics k = cam.intrinsics(depth.cols, depth.rows);
-  f.cloud = cloudFromDepth(depth, k, cam.depth_scale / 1000);
-  f.focal = static_cast<float>(k.fx);
-  f.probability = ds.loadProbability(scene, image, object);
-  f.boundary = ds.loadBoundary(scene, image);
-  const PipelineParams p = benchmarkParams();
-  f.model = prepareModelFile(ds.modelPath(object).string(), 0.001f, p.model);
-  f.segment = buildSoftSegment(f.cloud, f.probability, f.focal, p.segment);
-  if (!f.boundary.empty()) labelRegions(f.segment, f.boundary, depth.cols, depth.rows);
-  return frames.emplace(dataset, std::move(f)).first->second;
-}
-
-const Frame& cat() {
-  return frame("lmo-cat", 2, 3, 6);
-}
-const Frame& dove() {
-  return frame("rutgers-packed", 0, 0, 1);
-}
 
 void softSegment(benchmark::State& state, const Frame& (*get)()) {
   const Frame& f = get();
@@ -138,6 +89,6 @@ BENCHMARK_CAPTURE(fullEstimate, cat, cat)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fullEstimate, dove, dove)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-}  // namespace stocs
+}  // namespace stocs::bench
 
 BENCHMARK_MAIN();
