@@ -1,7 +1,7 @@
 #pragma once
 // Open-addressing hash table from packed voxel cell keys (voxel_key.h) to ranges of an array: the
 // index structure behind PointGrid and NeighbourhoodGrid. Linear probing on a power-of-two table at
-// most half full; no deletion, no allocation after reserve().
+// most half full, doubling when an insertion would pass that; no deletion.
 
 #include <cstdint>
 #include <vector>
@@ -14,7 +14,7 @@ class CellTable {
     uint32_t begin = 0, end = 0;
   };
 
-  /// Empties the table and sizes it for up to `cells` keys.
+  /// Empties the table and sizes it for `cells` keys (more may be inserted: it grows).
   void reserve(size_t cells) {
     size_t capacity = 16;
     shift_ = 60;
@@ -23,20 +23,29 @@ class CellTable {
       --shift_;
     }
     mask_ = capacity - 1;
+    size_ = 0;
     keys_.assign(capacity, kEmpty);
     ranges_.assign(capacity, Range{});
   }
 
-  /// The range of `key`, inserted empty if absent (the table must have room).
+  /// The range of `key`, inserted empty if absent. An insertion may move every range, so a
+  /// reference is valid until the next insertion.
   Range& findOrInsert(uint64_t key) {
+    if (keys_.empty()) reserve(8);
     for (uint64_t h = hash(key);; h = (h + 1) & mask_) {
       if (keys_[h] == key) return ranges_[h];
-      if (keys_[h] == kEmpty) {
-        keys_[h] = key;
-        return ranges_[h];
+      if (keys_[h] != kEmpty) continue;
+      if (2 * (size_ + 1) > keys_.size()) {
+        grow();
+        return findOrInsert(key);
       }
+      ++size_;
+      keys_[h] = key;
+      return ranges_[h];
     }
   }
+
+  size_t size() const { return size_; }
 
   /// The range of `key`, or nullptr.
   const Range* find(uint64_t key) const {
@@ -57,11 +66,22 @@ class CellTable {
 
  private:
   static constexpr uint64_t kEmpty = ~0ull;
+
+  void grow() {
+    std::vector<uint64_t> keys = std::move(keys_);
+    std::vector<Range> ranges = std::move(ranges_);
+    reserve(keys.size());  // doubles the capacity
+    for (size_t h = 0; h < keys.size(); ++h) {
+      if (keys[h] != kEmpty) findOrInsert(keys[h]) = ranges[h];
+    }
+  }
+
   uint64_t hash(uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> shift_; }
 
   std::vector<uint64_t> keys_;
   std::vector<Range> ranges_;
   uint64_t mask_ = 0;
+  size_t size_ = 0;
   int shift_ = 64;
 };
 

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "stocs/lcp_scorer.h"
+#include "stocs/neighbourhood_grid.h"
 
 namespace stocs {
 
@@ -21,8 +22,26 @@ struct IcpParams {
   void validate() const;
 };
 
-/// Refined pose against the segment points of `region` (-1: all), or `pose` itself when fewer than
-/// 6 correspondences are found.
+/// Refines poses against one segment; the correspondence grid is built once for all of them.
+class IcpRefiner {
+ public:
+  /// Throws InputError when `params` are out of range.
+  IcpRefiner(const SoftSegment& segment, const IcpParams& params);
+
+  /// Refined pose against the segment points of `region` (-1: all), or `pose` itself when fewer
+  /// than 6 correspondences are found.
+  Eigen::Isometry3f refine(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                           int region) const;
+
+ private:
+  const SoftSegment& segment_;
+  IcpParams params_;
+  NeighbourhoodGrid grid_;
+  float cos_normal_;
+};
+
+/// One refinement without keeping the grid: IcpRefiner(segment, params).refine(model, pose,
+/// region).
 Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment& segment,
                                      const Eigen::Isometry3f& pose, int region,
                                      const IcpParams& params);

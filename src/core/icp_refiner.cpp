@@ -26,15 +26,24 @@ void IcpParams::validate() const {
   }
 }
 
+IcpRefiner::IcpRefiner(const SoftSegment& segment, const IcpParams& params)
+    : segment_(segment),
+      params_((params.validate(), params)),
+      grid_(segment.points, params.max_distance),
+      cos_normal_(std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {}
+
 Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment& segment,
                                      const Eigen::Isometry3f& pose, int region,
                                      const IcpParams& params) {
-  params.validate();
-  const NeighbourhoodGrid grid(segment.points, params.max_distance);
+  return IcpRefiner(segment, params).refine(model, pose, region);
+}
+
+Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                                     int region) const {
+  const SoftSegment& segment = segment_;
   auto inRegion = [&](int i) { return region < 0 || segment.region[i] == region; };
-  const float cos_normal = std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f);
   Eigen::Isometry3f current = pose;
-  for (int it = 0; it < params.iterations; ++it) {
+  for (int it = 0; it < params_.iterations; ++it) {
     // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w and a
     // translation v has Jacobian [p x n, n].
     Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
@@ -44,8 +53,8 @@ Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment
       const Eigen::Vector3f p = current * model.points[i];
       const Eigen::Vector3f n = current.linear() * model.normals[i];
       if (n.dot(p) >= 0) continue;  // faces away from the camera: cannot be observed
-      const int s = grid.closest(p, inRegion);
-      if (s < 0 || n.dot(segment.normals[s]) < cos_normal) continue;
+      const int s = grid_.closest(p, inRegion);
+      if (s < 0 || n.dot(segment.normals[s]) < cos_normal_) continue;
       const Eigen::Vector3d ns = segment.normals[s].cast<double>();
       const Eigen::Vector3d pd = p.cast<double>();
       Eigen::Matrix<double, 6, 1> j;

@@ -29,7 +29,9 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     }
   };
   // Counting sort into the cells around each point: count (in `end`), offsets, then fill.
-  table_.reserve(27 * subset.size());
+  // A surface's cells and their neighbours number a few times its points, far below the 27 per
+  // point of the worst case; the table grows if needed.
+  table_.reserve(4 * subset.size());
   for (uint32_t i : subset) {
     forEachNeighbourCell(points[i], [&](uint64_t key) { ++table_.findOrInsert(key).end; });
   }

@@ -48,12 +48,12 @@ bool higherScore(const Hypothesis& a, const Hypothesis& b) {
 
 /// Point-to-plane refinement of `h`, kept when it does not lower the objective by more than 10%
 /// (a diverged refinement keeps the unrefined pose).
-Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const SoftSegment& segment,
-                  const LcpScorer& scorer, const IcpParams& icp) {
+Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
+                  const LcpScorer& scorer) {
   Hypothesis out = h;
   out.polished = true;
-  if (!icp.enabled) return out;
-  const Eigen::Isometry3f pose = refinePointToPlane(model, segment, h.pose, h.region, icp);
+  if (!icp) return out;
+  const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region);
   const float score = scorer.score(model, pose, h.region);
   if (score < 0.9f * h.score) return out;
   out.pose = pose;
@@ -72,9 +72,11 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           const ObjectModel& model, const SoftSegment& segment,
                                           const LcpScorer& scorer, const StocsParams& params) {
   const size_t first = std::min(refined_bases, ranked.size());
+  std::optional<IcpRefiner> icp;
+  if (params.icp.enabled) icp.emplace(segment, params.icp);
   std::vector<Hypothesis> pool;
   for (size_t k = 0; k < first; ++k) {
-    pool.push_back(refine(ranked[k], model, segment, scorer, params.icp));
+    pool.push_back(refine(ranked[k], model, icp ? &*icp : nullptr, scorer));
   }
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
@@ -90,7 +92,7 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     if (taken.size() == count) break;
     if (!taken.empty() && !isNew(h)) continue;
     if (!h.polished) {
-      h = refine(h, model, segment, scorer, params.icp);
+      h = refine(h, model, icp ? &*icp : nullptr, scorer);
       if (!taken.empty() && !isNew(h)) continue;  // refinement moved it onto a taken instance
     }
     taken.push_back(h);
