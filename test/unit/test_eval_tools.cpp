@@ -1,0 +1,179 @@
+// The evaluation tools end to end: `stocs eval` (known poses give exact metrics; bad inputs exit 2
+// naming the problem) and `stocs estimate --per-object` (the times the benchmark reads).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "stocs/bop_results.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+const std::string kTool = STOCS_TOOL_PATH;
+
+/// Rows of a CSV file as column name -> value.
+std::vector<std::map<std::string, std::string>> readCsv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> names;
+  std::vector<std::map<std::string, std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
+    if (names.empty()) {
+      names = cells;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (size_t i = 0; i < cells.size() && i < names.size(); ++i) row[names[i]] = cells[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column) {
+  return std::stod(row.at(column));
+}
+
+class EvalCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = test::scratchDir("eval_cli");
+    truth_ = test::writeSyntheticBopDataset(root_ / "data");
+  }
+
+  /// Writes a results file holding the truth moved by `shift_mm` (camera frame) and turned by
+  /// `turn` (object frame).
+  std::string results(const std::string& name, const Eigen::Vector3d& shift_mm,
+                      const Eigen::Matrix3d& turn = Eigen::Matrix3d::Identity()) const {
+    BopResult r;
+    r.obj_id = 1;
+    r.score = 1;
+    r.R = truth_.linear().cast<double>() * turn;
+    r.t_mm = truth_.translation().cast<double>() * 1000 + shift_mm;
+    r.time = 0.5;
+    writeBopResults(root_ / name, {r});
+    return (root_ / name).string();
+  }
+
+  std::string data() const { return (root_ / "data").string(); }
+
+  std::filesystem::path root_;
+  Eigen::Isometry3f truth_;
+};
+
+TEST_F(EvalCliTest, KnownPosesGiveExactMetrics) {
+  const std::string exact = results("exact.csv", Eigen::Vector3d::Zero());
+  const std::string shifted = results("shifted.csv", {3, 4, 0});
+  const std::string turned =
+      results("turned.csv", Eigen::Vector3d::Zero(),
+              Eigen::AngleAxisd(33 * M_PI / 180, Eigen::Vector3d::UnitX()).toRotationMatrix());
+  std::string out;
+  ASSERT_EQ(
+      test::runCommand(kTool + " eval --dataset " + data() + " --results " + exact + " --dataset " +
+                           data() + " --results " + shifted + " --dataset " + data() +
+                           " --results " + turned + " --csv " + (root_ / "summary.csv").string() +
+                           " --targets-csv " + (root_ / "targets.csv").string(),
+                       out),
+      0)
+      << out;
+  EXPECT_NE(out.find("| results | dataset | object | targets | found | ADD-S AUC"),
+            std::string::npos)
+      << out;
+
+  const auto targets = readCsv(root_ / "targets.csv");
+  ASSERT_EQ(targets.size(), 3u);
+  // The exact pose: every error 0.
+  for (const char* column : {"add_mm", "adds_mm", "rotation_deg", "translation_cm"}) {
+    EXPECT_NEAR(number(targets[0], column), 0, 1e-3) << column;
+  }
+  EXPECT_EQ(targets[0].at("rt_success"), "1");
+  // Shifted by (3, 4, 0) mm: every model point moves 5 mm.
+  EXPECT_NEAR(number(targets[1], "add_mm"), 5, 1e-3);
+  EXPECT_NEAR(number(targets[1], "translation_cm"), 0.5, 1e-4);
+  EXPECT_NEAR(number(targets[1], "rotation_deg"), 0, 1e-3);
+  EXPECT_LE(number(targets[1], "adds_mm"), 5 + 1e-3);
+  // Turned by 33 degrees about the object's x axis: roll 33, pitch and yaw 0.
+  EXPECT_NEAR(number(targets[2], "rotation_deg"), 11, 1e-3);
+  EXPECT_NEAR(number(targets[2], "translation_cm"), 0, 1e-4);
+  EXPECT_EQ(targets[2].at("rt_success"), "0");
+
+  const auto summary = readCsv(root_ / "summary.csv");
+  ASSERT_EQ(summary.size(), 7u);  // object and dataset rows per results file, then overall
+  EXPECT_EQ(summary[1].at("object"), "all");
+  EXPECT_NEAR(number(summary[1], "adds_auc"), 1, 1e-5);
+  EXPECT_NEAR(number(summary[3], "adds_auc"), 1 - number(targets[1], "adds_mm") / 100, 1e-6);
+  EXPECT_EQ(summary[6].at("results"), "all");
+  EXPECT_EQ(summary[6].at("targets"), "3");
+  EXPECT_NEAR(number(summary[6], "rt_success"), 2.0 / 3, 1e-5);
+}
+
+TEST_F(EvalCliTest, MissingEstimateIsAFailure) {
+  writeBopResults(root_ / "empty.csv", {});
+  std::string out;
+  ASSERT_EQ(
+      test::runCommand(kTool + " eval --dataset " + data() + " --results " +
+                           (root_ / "empty.csv").string() + " --csv " + (root_ / "s.csv").string(),
+                       out),
+      0)
+      << out;
+  const auto summary = readCsv(root_ / "s.csv");
+  ASSERT_FALSE(summary.empty());
+  EXPECT_EQ(summary[0].at("found"), "0");
+  EXPECT_EQ(number(summary[0], "adds_auc"), 0);
+  EXPECT_EQ(summary[0].at("median_adds_mm"), "inf");
+}
+
+TEST_F(EvalCliTest, BadInputsExitTwoNamingTheProblem) {
+  const std::string good = results("good.csv", Eigen::Vector3d::Zero());
+  std::string out;
+  std::ofstream(root_ / "bad.csv")
+      << "scene_id,im_id,obj_id,score,R,t,time\n0,0,1,1,1 0 0,0 0 0,1\n";
+  EXPECT_EQ(
+      test::runCommand(
+          kTool + " eval --dataset " + data() + " --results " + (root_ / "bad.csv").string(), out),
+      2);
+  EXPECT_NE(out.find("bad.csv:2: R must hold 9 numbers"), std::string::npos) << out;
+
+  BopResult unknown;
+  unknown.obj_id = 7;
+  writeBopResults(root_ / "unknown.csv", {unknown});
+  EXPECT_EQ(test::runCommand(kTool + " eval --dataset " + data() + " --results " +
+                                 (root_ / "unknown.csv").string(),
+                             out),
+            2);
+  EXPECT_NE(out.find("unknown object 7"), std::string::npos) << out;
+
+  EXPECT_EQ(
+      test::runCommand(
+          kTool + " eval --dataset " + data() + " --dataset " + data() + " --results " + good, out),
+      2);
+  EXPECT_NE(out.find("come in pairs: got 2 datasets and 1 results files"), std::string::npos)
+      << out;
+  EXPECT_EQ(test::runCommand(
+                kTool + " eval --dataset " + data() + " --results " + good + " --prob x", out),
+            2);
+  EXPECT_NE(out.find("unknown probability source 'x'"), std::string::npos) << out;
+}
+
+TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
+  std::string out;
+  ASSERT_EQ(test::runCommand(kTool + " estimate --dataset " + data() + " --out " +
+                                 (root_ / "r.csv").string() + " --per-object " +
+                                 (root_ / "objects.csv").string() + " --no-cache --bases 20",
+                             out),
+            0)
+      << out;
+  const auto rows = readCsv(root_ / "objects.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].at("obj_id"), "1");
+  EXPECT_EQ(rows[0].at("found"), "1");
+  EXPECT_GT(number(rows[0], "seconds"), 0);
+  EXPECT_GT(number(rows[0], "segment_points"), 50);
+}
+
+}  // namespace
+}  // namespace stocs
