@@ -1,5 +1,6 @@
 // The evaluation tools end to end: `stocs eval` (known poses give exact metrics; bad inputs exit 2
-// naming the problem) and `stocs estimate --per-object` (the times the benchmark reads).
+// naming the problem), `stocs estimate --per-object` (the times the benchmark reads) and a small
+// `stocs bench` with StoCS and its hard-segment ablation.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -7,6 +8,7 @@
 #include <sstream>
 
 #include "stocs/bop_results.h"
+#include "stocs/eval/dataset_evaluation.h"
 #include "test_support.h"
 
 namespace stocs {
@@ -173,6 +175,125 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
   EXPECT_EQ(rows[0].at("found"), "1");
   EXPECT_GT(number(rows[0], "seconds"), 0);
   EXPECT_GT(number(rows[0], "segment_points"), 50);
+}
+
+bool isPng(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  return std::string(magic, 8) == "\x89PNG\r\n\x1a\n" && std::filesystem::file_size(file) > 2000;
+}
+
+TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
+  const std::filesystem::path out = root_ / "bench";
+  std::string log;
+  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
+                                 " --methods stocs,stocs-hard --prob real --thresholds 0.5,0.95 "
+                                 "--budgets 0.05 --bases 30 --cache-dir " +
+                                 (root_ / "cache").string(),
+                             log),
+            0)
+      << log;
+  // Not a terminal: one line per run.
+  EXPECT_NE(log.find("bench [8/8] stocs-hard on data/real, budget 0.05 s: ok"), std::string::npos)
+      << log;
+
+  const auto summary = readCsv(out / "summary.csv");
+  ASSERT_EQ(summary.size(), 2u) << "one row per method for the single input";
+  for (const auto& row : summary) {
+    EXPECT_EQ(row.at("dataset"), "data");
+    EXPECT_EQ(row.at("source"), "real");
+    EXPECT_EQ(row.at("targets"), "1");
+    EXPECT_EQ(row.at("failed_runs"), "0");
+    EXPECT_GT(number(row, "time_median_s"), 0);
+    EXPECT_GT(number(row, "peak_memory_mb"), 10);
+  }
+  EXPECT_EQ(summary[0].at("method"), "stocs");
+  EXPECT_EQ(summary[0].at("found"), "1");
+  EXPECT_EQ(number(summary[0], "adds_success"), 1);  // a clean generated frame
+
+  // The per-target metrics are those of the BOP file the method wrote.
+  const std::vector<BopResult> written = readBopResults(out / "bop" / "data_real" / "stocs.csv");
+  ASSERT_EQ(written.size(), 1u);
+  const BopDataset dataset(root_ / "data");
+  DatasetEvaluator evaluator(dataset);
+  const TargetResult expected =
+      evaluator.evaluate(listTargets(dataset, {}, {}), written, "stocs.csv").targets.at(0);
+  const auto targets = readCsv(out / "targets.csv");
+  ASSERT_EQ(targets.size(), 2u);
+  EXPECT_EQ(targets[0].at("method"), "stocs");
+  EXPECT_NEAR(number(targets[0], "adds_mm"), expected.errors.adds_mm, 1e-6);
+  EXPECT_NEAR(number(targets[0], "rotation_deg"), expected.errors.rotation_deg, 1e-6);
+  EXPECT_NEAR(number(summary[0], "adds_auc"), 1 - expected.errors.adds_mm / 100, 1e-6);
+
+  // The sweeps: every method at every value. The map holds 0.9 everywhere on the object, so a
+  // threshold of 0.95 leaves no segment and no pose.
+  const auto thresholds = readCsv(out / "threshold_sweep.csv");
+  ASSERT_EQ(thresholds.size(), 4u);
+  EXPECT_EQ(thresholds[0].at("threshold"), "0.5");
+  EXPECT_EQ(thresholds[0].at("found"), "1");
+  EXPECT_EQ(thresholds[1].at("threshold"), "0.95");
+  EXPECT_EQ(thresholds[1].at("found"), "0");
+  EXPECT_EQ(readCsv(out / "budget_sweep.csv").size(), 2u);
+
+  for (const char* plot : {"accuracy_threshold_data_real.png", "threshold_sweep_data_real.png",
+                           "budget_sweep_data_real.png"}) {
+    EXPECT_TRUE(isPng(out / "plots" / plot)) << plot;
+  }
+  std::ifstream md(out / "results.md");
+  const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("## Methods x datasets"), std::string::npos);
+  EXPECT_NE(report.find("![accuracy_threshold, data/real](plots/accuracy_threshold_data_real.png)"),
+            std::string::npos);
+  EXPECT_EQ(report.find("## Notes and failures"), std::string::npos) << report;
+}
+
+TEST_F(EvalCliTest, BenchSurvivesAFailingRun) {
+  const std::filesystem::path out = root_ / "bench";
+  // A folder where the results file should go makes that run fail to write them.
+  std::filesystem::create_directories(out / "bop" / "data_real" / "stocs.csv" / "blocker");
+  std::string log;
+  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
+                                 " --methods stocs,stocs-hard --no-threshold-sweep "
+                                 "--no-budget-sweep --no-plots --bases 20 --no-cache",
+                             log),
+            0)
+      << log;
+  EXPECT_NE(log.find("stocs on data/real: FAILED: exit code 2"), std::string::npos) << log;
+  const auto summary = readCsv(out / "summary.csv");
+  ASSERT_EQ(summary.size(), 2u);
+  EXPECT_EQ(summary[0].at("failed_runs"), "1");
+  EXPECT_EQ(summary[0].at("found"), "0");
+  EXPECT_EQ(number(summary[0], "adds_auc"), 0);
+  EXPECT_EQ(summary[1].at("found"), "1");  // the next method ran anyway
+  EXPECT_FALSE(std::filesystem::exists(out / "plots"));
+}
+
+TEST_F(EvalCliTest, BenchKillsARunPastItsTimeout) {
+  const std::filesystem::path out = root_ / "bench";
+  std::string log;
+  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
+                                 " --methods stocs --no-threshold-sweep --no-budget-sweep "
+                                 "--no-plots --no-cache --run-timeout 0.01",
+                             log),
+            0)
+      << log;
+  EXPECT_NE(log.find("stocs on data/real: FAILED: timed out after 0 s"), std::string::npos) << log;
+  const auto summary = readCsv(out / "summary.csv");
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_EQ(summary[0].at("failed_runs"), "1");
+}
+
+TEST_F(EvalCliTest, BenchRefusesUnknownMethodsAndSources) {
+  std::string log;
+  const std::string base =
+      kTool + " bench --dataset " + data() + " --out " + (root_ / "b").string() + " --no-plots";
+  EXPECT_EQ(test::runCommand(base + " --methods stocs,nope", log), 2);
+  EXPECT_NE(log.find("unknown method 'nope'"), std::string::npos) << log;
+  EXPECT_EQ(test::runCommand(base + " --prob nope", log), 2);
+  EXPECT_NE(log.find("unknown probability source 'nope'"), std::string::npos) << log;
+  EXPECT_EQ(test::runCommand(base + " --thresholds 1.5", log), 2);
+  EXPECT_NE(log.find("threshold 1.5 is outside (0, 1)"), std::string::npos) << log;
 }
 
 }  // namespace
