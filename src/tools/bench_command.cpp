@@ -5,12 +5,12 @@
 #include <unistd.h>
 
 #include <map>
-#include <set>
 
 #include "bench_report.h"
 #include "child_process.h"
 #include "cli_options.h"
 #include "commands.h"
+#include "eval_report.h"
 #include "line_plot.h"
 #include "object_runs.h"
 #include "progress.h"
@@ -51,7 +51,7 @@ struct BenchOptions {
 /// A BOP folder for `dir`: itself, or a conversion under `out` for a PCD scene folder.
 fs::path bopFolder(const fs::path& dir, const fs::path& out) {
   if (!isPcdSceneFolder(dir)) return dir;
-  const fs::path converted = out / "datasets" / dir.filename();
+  const fs::path converted = out / "datasets" / datasetName(dir);
   fs::remove_all(converted);
   const int pixels = convertPcdSceneToBop(dir, converted);
   fmt::print(stderr, "bench: {} converted to a BOP dataset in {} ({} model pixels)\n", dir.string(),
@@ -62,9 +62,9 @@ fs::path bopFolder(const fs::path& dir, const fs::path& out) {
 std::vector<BenchInput> benchInputs(const BenchOptions& o, std::vector<std::string>& notes) {
   std::vector<BenchInput> inputs;
   for (const std::string& d : o.datasets) {
-    const fs::path folder = bopFolder(fs::path(d).lexically_normal(), o.out);
+    const fs::path folder = bopFolder(d, o.out);
     const BopDataset dataset(folder, o.split);
-    const std::string name = fs::path(d).lexically_normal().filename().string();
+    const std::string name = datasetName(d);
     for (const std::string& spec : o.sources) {
       const auto source = makeProbabilitySource(spec, dataset, o.params.stocs.seed);
       BenchInput input{name, spec, folder, listTargets(dataset, o.scenes, o.objects, source.get())};

@@ -49,7 +49,7 @@ int runEval(const EvalOptions& o) {
   std::string notes;
   for (size_t i = 0; i < o.datasets.size(); ++i) {
     const BopDataset dataset(o.datasets[i], o.split);
-    const std::string name = dataset.root().filename().string();
+    const std::string name = datasetName(dataset.root());
     std::unique_ptr<ProbabilitySource> source;
     if (!o.prob.empty()) source = makeProbabilitySource(o.prob, dataset, 0);
     const std::vector<Target> targets = listTargets(dataset, o.scenes, o.objects, source.get());

@@ -71,6 +71,11 @@ std::string targetsCsv(const std::vector<std::string>& label_names,
   return table.csv();
 }
 
+std::string datasetName(const std::filesystem::path& folder) {
+  const std::filesystem::path p = folder.lexically_normal();
+  return (p.has_filename() ? p : p.parent_path()).filename().string();
+}
+
 std::vector<TargetErrors> errorsOf(const std::vector<TargetResult>& targets) {
   std::vector<TargetErrors> errors;
   for (const TargetResult& t : targets) errors.push_back(t.errors);

@@ -2,6 +2,7 @@
 // The columns `stocs eval` and `stocs bench` report metrics in: a summary of targets, and one row
 // per target.
 
+#include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
@@ -29,6 +30,9 @@ struct LabelledTarget {
 /// One CSV row per target: the labels, the target, every error and success, and the time.
 std::string targetsCsv(const std::vector<std::string>& label_names,
                        const std::vector<LabelledTarget>& rows);
+
+/// The name a dataset is reported under: its folder's name (a trailing separator ignored).
+std::string datasetName(const std::filesystem::path& folder);
 
 /// Errors of the given targets, for summarize().
 std::vector<TargetErrors> errorsOf(const std::vector<TargetResult>& targets);

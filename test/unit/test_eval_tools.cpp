@@ -187,7 +187,8 @@ bool isPng(const std::filesystem::path& file) {
 TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   const std::filesystem::path out = root_ / "bench";
   std::string log;
-  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
+  // A trailing separator does not change the dataset's name.
+  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + "/ --out " + out.string() +
                                  " --methods stocs,stocs-hard --prob real --thresholds 0.5,0.95 "
                                  "--budgets 0.05 --bases 30 --cache-dir " +
                                  (root_ / "cache").string(),
