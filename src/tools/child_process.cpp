@@ -19,7 +19,7 @@ extern char** environ;
 namespace stocs::tools {
 
 std::string ChildOutcome::describe() const {
-  if (timed_out) return fmt::format("timed out after {:.0f} s", seconds);
+  if (timed_out) return fmt::format("timed out (limit {:g} s)", time_limit);
   if (exited) return fmt::format("exit code {}", exit_code);
   if (signal) return fmt::format("killed by signal {} ({})", signal, strsignal(signal));
   return "not started";
@@ -61,6 +61,7 @@ ChildOutcome runChild(const std::vector<std::string>& argv, const std::filesyste
         std::chrono::steady_clock::now() - start > std::chrono::duration<double>(timeout_seconds)) {
       kill(pid, SIGKILL);
       out.timed_out = true;
+      out.time_limit = timeout_seconds;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }

@@ -15,11 +15,12 @@ struct ChildOutcome {
   int exit_code = -1;
   int signal = 0;
   bool timed_out = false;  ///< killed for running longer than allowed
+  double time_limit = 0;   ///< the limit it exceeded (s), when timed_out
   double peak_rss_mb = 0;  ///< the child's maximum resident set size (getrusage ru_maxrss)
   double seconds = 0;      ///< wall time
 
   bool ok() const { return exited && exit_code == 0; }
-  /// "exit code 2", "killed by signal 11 (Segmentation fault)", "timed out after 60 s", ...
+  /// "exit code 2", "killed by signal 11 (Segmentation fault)", "timed out (limit 60 s)", ...
   std::string describe() const;
 };
 
