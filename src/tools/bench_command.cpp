@@ -188,15 +188,18 @@ void execute(const BenchOptions& o, const BenchData& d, DatasetEvaluator& evalua
   progress.finish(r.failure.empty() ? "ok" : "FAILED: " + r.failure);
 }
 
-/// The options given, one `--name value` per value, for the report.
+/// The options given, for the report: lists as typed (`--methods a,b`), others once per value.
 std::string commandLine(const CLI::App& cmd) {
   std::string line = "stocs " + cmd.get_name();
   for (const CLI::Option* opt : cmd.get_options()) {
     if (opt->count() == 0) continue;
-    if (opt->get_expected_max() == 0) line += " " + opt->get_name();
-    for (const std::string& v :
-         opt->get_expected_max() == 0 ? std::vector<std::string>{} : opt->results()) {
-      line += " " + opt->get_name() + " " + v;
+    if (opt->get_expected_max() == 0) {
+      line += " " + opt->get_name();
+    } else if (opt->get_delimiter() != '\0') {
+      const std::string delimiter(1, opt->get_delimiter());
+      line += fmt::format(" {} {}", opt->get_name(), fmt::join(opt->results(), delimiter));
+    } else {
+      for (const std::string& v : opt->results()) line += " " + opt->get_name() + " " + v;
     }
   }
   return line;

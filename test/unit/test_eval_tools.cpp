@@ -283,6 +283,9 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   std::ifstream md(out / "results.md");
   const std::string report((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
   EXPECT_NE(report.find("## Methods x datasets"), std::string::npos);
+  // The command as given, lists as typed.
+  EXPECT_NE(report.find("--methods stocs,stocs-hard"), std::string::npos) << report;
+  EXPECT_NE(report.find("--thresholds 0.5,0.95 --budgets 0.05"), std::string::npos) << report;
   EXPECT_NE(report.find("![accuracy_threshold, data/real](plots/accuracy_threshold_data_real.png)"),
             std::string::npos);
   EXPECT_EQ(report.find("## Notes and failures"), std::string::npos) << report;
