@@ -5,6 +5,8 @@
 //          which forgives any symmetry of the shape.
 
 #include <Eigen/Geometry>
+#include <limits>
+#include <memory>
 #include <vector>
 
 namespace stocs {
@@ -19,5 +21,27 @@ double addError(const std::vector<Eigen::Vector3f>& model_points, const RigidPos
 
 double addsError(const std::vector<Eigen::Vector3f>& model_points, const RigidPose& estimate,
                  const RigidPose& truth);
+
+/// ADD-S of many poses of one model. The kd-tree over the model points is built once: the closest
+/// point is searched in the model frame of the truth, where the truth's points are the model's.
+class AddsMetric {
+ public:
+  explicit AddsMetric(std::vector<Eigen::Vector3f> model_points);
+  AddsMetric(AddsMetric&&) noexcept;
+  AddsMetric& operator=(AddsMetric&&) noexcept;
+  ~AddsMetric();
+
+  /// ADD-S of `estimate` against `truth` (0 for an empty model). Returns +infinity as soon as the
+  /// mean is certain to exceed `give_up_above`, which makes finding the nearest of many instances
+  /// cheap.
+  double error(const RigidPose& estimate, const RigidPose& truth,
+               double give_up_above = std::numeric_limits<double>::infinity()) const;
+
+  const std::vector<Eigen::Vector3f>& points() const;
+
+ private:
+  struct Index;
+  std::unique_ptr<Index> index_;
+};
 
 }  // namespace stocs

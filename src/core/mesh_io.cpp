@@ -1,5 +1,6 @@
-// PLY and PCD parsing is PCL's; this file only checks what PCL gives back. It is the only core file
-// that includes PCL headers, which are slow to compile.
+// PLY and PCD parsing is PCL's; this file only checks what PCL gives back. With
+// pcd_scene_dataset.cpp it is the only core file that includes PCL headers, which are slow to
+// compile.
 #include <fmt/format.h>
 #include <pcl/PolygonMesh.h>
 #include <pcl/common/io.h>

@@ -70,6 +70,14 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(stocs);
 }
 
+void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,
+                         std::vector<int>& objects) {
+  cmd.add_option("--split", split, "Dataset split folder");
+  cmd.add_option("--scenes", scenes, "Scene ids, comma-separated (default: all)")->delimiter(',');
+  cmd.add_option("--objects", objects, "Object ids, comma-separated (default: all)")
+      ->delimiter(',');
+}
+
 void addModelOptions(CLI::App& cmd, ModelOptions& options) {
   if (options.cache_dir.empty()) options.cache_dir = ModelCache::defaultDirectory().string();
   cmd.add_option("--model-scale", options.unit_scale, "Model units to metres (BOP: mm, 0.001)");

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "stocs/pipeline.h"
 
@@ -20,6 +21,10 @@ struct ModelOptions {
 
 /// Adds the options of every estimation stage, writing into `params`.
 void addPipelineOptions(CLI::App& cmd, PipelineParams& params);
+
+/// Adds --split, --scenes and --objects: which images and objects of a dataset to use.
+void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,
+                         std::vector<int>& objects);
 
 /// Adds --model-scale, --cache-dir and --no-cache.
 void addModelOptions(CLI::App& cmd, ModelOptions& options);

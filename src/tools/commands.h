@@ -13,6 +13,8 @@ struct Command {
 };
 
 Command registerEstimate(CLI::App& app);
+Command registerEval(CLI::App& app);
+Command registerBench(CLI::App& app);
 Command registerPrepare(CLI::App& app);
 
 }  // namespace stocs::tools

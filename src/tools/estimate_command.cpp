@@ -10,6 +10,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "object_runs.h"
 #include "stocs/bop_dataset.h"
 #include "stocs/bop_results.h"
 #include "stocs/error.h"
@@ -23,6 +24,7 @@ namespace {
 struct EstimateOptions {
   std::string dataset;
   std::string out;
+  std::string per_object;
   std::string split = "test";
   std::vector<int> scenes;
   std::vector<int> objects;
@@ -74,6 +76,7 @@ int runEstimate(const EstimateOptions& o) {
   const std::set<int> wanted(o.objects.begin(), o.objects.end());
   std::map<int, PreparedModel> models;
   std::vector<BopResult> results;
+  std::vector<ObjectRun> object_runs;
   int targets = 0, found = 0;
 
   for (int scene : scenes) {
@@ -134,6 +137,8 @@ int runEstimate(const EstimateOptions& o) {
 
       for (const auto& [obj, e] : estimates) {
         ++targets;
+        object_runs.push_back(
+            {{scene, im, obj}, e.found, e.seconds, e.segment_points, e.hypotheses});
         std::string line = fmt::format("scene {} image {} object {}: segment {} points, ", scene,
                                        im, obj, e.segment_points);
         if (!e.found) {
@@ -176,6 +181,7 @@ int runEstimate(const EstimateOptions& o) {
         o.dataset, o.prob));
   }
   writeBopResults(o.out, results);
+  if (!o.per_object.empty()) writeObjectRuns(o.per_object, object_runs);
   fmt::print(stderr, "{} of {} objects found; results in {}\n", found, targets, o.out);
   return 0;
 }
@@ -188,11 +194,10 @@ Command registerEstimate(CLI::App& app) {
       app.add_subcommand("estimate", "Estimate object poses on a BOP dataset, write BOP results");
   cmd->add_option("--dataset", o->dataset, "BOP dataset folder (models/, test/)")->required();
   cmd->add_option("--out", o->out, "Results file (BOP CSV)")->required();
-  cmd->add_option("--split", o->split, "Dataset split folder");
-  cmd->add_option("--scenes", o->scenes, "Scene ids, comma-separated (default: all)")
-      ->delimiter(',');
-  cmd->add_option("--objects", o->objects, "Object ids, comma-separated (default: all)")
-      ->delimiter(',');
+  cmd->add_option("--per-object", o->per_object,
+                  "Also write a CSV row per attempted object: found, the method's seconds, "
+                  "segment points, hypotheses");
+  addSelectionOptions(*cmd, o->split, o->scenes, o->objects);
   cmd->add_option("--boundaries", o->boundaries,
                   "Instance boundary maps edge/IMAGE.png: 'auto' uses them where present, 'off' "
                   "ignores them")

@@ -1,0 +1,308 @@
+#include "bench_report.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <optional>
+#include <thread>
+
+#include "eval_report.h"
+#include "line_plot.h"
+#include "stocs/eval/accuracy_curve.h"
+
+namespace stocs::tools {
+namespace {
+
+using Scope = std::optional<size_t>;  ///< one input, or every input pooled
+
+/// The targets and timings of the runs of one method at one setting, over a scope.
+struct Pool {
+  std::vector<TargetErrors> errors;
+  std::vector<double> seconds;  ///< where known
+  double peak_mb = 0;
+  int failed_runs = 0;
+};
+
+Pool pool(const BenchData& d, const std::string& method, Sweep sweep, double value, Scope scope) {
+  Pool p;
+  for (const BenchRun& r : d.runs) {
+    if (r.method != method || r.sweep != sweep || (sweep != Sweep::kNone && r.value != value) ||
+        (scope && r.input != *scope)) {
+      continue;
+    }
+    for (size_t i = 0; i < r.targets.size(); ++i) {
+      p.errors.push_back(r.targets[i].errors);
+      if (!std::isnan(r.seconds[i])) p.seconds.push_back(r.seconds[i]);
+    }
+    p.peak_mb = std::max(p.peak_mb, r.child.peak_rss_mb);
+    p.failed_runs += !r.failure.empty();
+  }
+  return p;
+}
+
+/// Each input, then all of them pooled when there are several.
+std::vector<Scope> scopes(const BenchData& d) {
+  std::vector<Scope> s;
+  for (size_t i = 0; i < d.inputs.size(); ++i) s.push_back(i);
+  if (d.inputs.size() > 1) s.push_back(std::nullopt);
+  return s;
+}
+
+/// The widest scope: all inputs pooled, or the only one.
+Scope widest(const BenchData& d) {
+  return d.inputs.size() == 1 ? Scope(0) : std::nullopt;
+}
+
+std::vector<Cell> scopeCells(const BenchData& d, Scope scope) {
+  if (!scope) return {textCell("all"), textCell("all")};
+  return {textCell(d.inputs[*scope].dataset_name), textCell(d.inputs[*scope].source)};
+}
+
+std::string scopeName(const BenchData& d, Scope scope) {
+  return scope ? d.inputs[*scope].name() : "all datasets";
+}
+
+std::string scopeTag(const BenchData& d, Scope scope) {
+  return scope ? d.inputs[*scope].tag() : "all";
+}
+
+std::vector<Cell> withMetrics(std::vector<Cell> head) {
+  for (const Cell& c : metricHeader()) head.push_back(c);
+  return head;
+}
+
+ReportTable mainTable(const BenchData& d) {
+  std::vector<Cell> header =
+      withMetrics({textCell("method"), textCell("dataset"), textCell("source")});
+  for (Cell c : std::vector<Cell>{{"time median (s)", "time_median_s"},
+                                  {"time p90 (s)", "time_p90_s"},
+                                  {"peak memory (MB)", "peak_memory_mb"},
+                                  {"failed runs", "failed_runs"}}) {
+    header.push_back(c);
+  }
+  ReportTable table(header);
+  for (const std::string& method : d.methods) {
+    for (Scope scope : scopes(d)) {
+      const Pool p = pool(d, method, Sweep::kNone, 0, scope);
+      std::vector<Cell> row = {textCell(method)};
+      for (const Cell& c : scopeCells(d, scope)) row.push_back(c);
+      for (const Cell& c : metricCells(summarize(p.errors))) row.push_back(c);
+      row.push_back(numberCell(quantile(p.seconds, 0.5), 3));
+      row.push_back(numberCell(quantile(p.seconds, 0.9), 3));
+      row.push_back(numberCell(p.peak_mb, 0));
+      row.push_back(textCell(std::to_string(p.failed_runs)));
+      table.add(row);
+    }
+  }
+  return table;
+}
+
+/// Sweep results at every value; `only` restricts the rows to one scope (markdown), else all.
+ReportTable sweepTable(const BenchData& d, Sweep sweep, const std::vector<double>& values,
+                       std::optional<Scope> only) {
+  const Cell value_header = sweep == Sweep::kThreshold ? Cell{"segmentation threshold", "threshold"}
+                                                       : Cell{"time budget (s)", "time_budget_s"};
+  std::vector<Cell> header =
+      withMetrics({textCell("method"), textCell("dataset"), textCell("source"), value_header});
+  header.push_back({"time median (s)", "time_median_s"});
+  ReportTable table(header);
+  for (const std::string& method : d.methods) {
+    for (Scope scope : scopes(d)) {
+      if (only && scope != *only) continue;
+      for (double v : values) {
+        const Pool p = pool(d, method, sweep, v, scope);
+        std::vector<Cell> row = {textCell(method)};
+        for (const Cell& c : scopeCells(d, scope)) row.push_back(c);
+        row.push_back(textCell(fmt::format("{:g}", v)));
+        for (const Cell& c : metricCells(summarize(p.errors))) row.push_back(c);
+        row.push_back(numberCell(quantile(p.seconds, 0.5), 3));
+        table.add(row);
+      }
+    }
+  }
+  return table;
+}
+
+/// A plot of percentages, with room above 100% so that lines there stay visible.
+LinePlot percentPlot(const std::string& title, const std::string& x_label,
+                     const std::string& y_label) {
+  LinePlot plot;
+  plot.title = title;
+  plot.x_label = x_label;
+  plot.y_label = y_label;
+  plot.y_min = 0;
+  plot.y_max = 105;
+  return plot;
+}
+
+LinePlot accuracyPlot(const BenchData& d, Scope scope) {
+  LinePlot plot = percentPlot("ADD-S accuracy-threshold curve, " + scopeName(d, scope),
+                              "ADD-S threshold (cm)", "accuracy (%)");
+  plot.x_min = 0;
+  plot.x_max = kAddsCurveLimitMm / 10;
+  plot.markers = false;
+  for (const std::string& method : d.methods) {
+    std::vector<double> adds;
+    for (const TargetErrors& e : pool(d, method, Sweep::kNone, 0, scope).errors) {
+      adds.push_back(e.adds_mm);
+    }
+    PlotSeries s{
+        fmt::format("{} (AUC {:.1f}%)", method, 100 * accuracyCurveArea(adds, kAddsCurveLimitMm)),
+        {}};
+    for (int i = 0; i <= 400; ++i) {
+      const double x_mm = kAddsCurveLimitMm * i / 400;
+      s.points.emplace_back(x_mm / 10, 100 * accuracyBelow(adds, x_mm));
+    }
+    if (!adds.empty()) plot.series.push_back(s);
+  }
+  return plot;
+}
+
+LinePlot thresholdPlot(const BenchData& d, Scope scope) {
+  LinePlot plot =
+      percentPlot("Success rate vs segmentation threshold, " + scopeName(d, scope),
+                  "segmentation threshold (StoCS: epsilon; hard-segment methods: threshold)",
+                  "success: error < 2 cm and 10° (%)");
+  plot.x_min = 0;
+  plot.x_max = 1;
+  for (const std::string& method : d.methods) {
+    PlotSeries s{method, {}};
+    for (double t : d.thresholds) {
+      const Pool p = pool(d, method, Sweep::kThreshold, t, scope);
+      if (!p.errors.empty()) s.points.emplace_back(t, 100 * summarize(p.errors).rt_success);
+    }
+    plot.series.push_back(s);
+  }
+  return plot;
+}
+
+LinePlot anytimePlot(const BenchData& d, Scope scope) {
+  LinePlot plot = percentPlot("Accuracy vs time budget (anytime), " + scopeName(d, scope),
+                              "median time per object (s), one point per budget", "ADD-S AUC (%)");
+  plot.log_x = true;
+  for (const std::string& method : d.methods) {
+    PlotSeries s{method, {}};
+    for (double b : d.budgets) {
+      const Pool p = pool(d, method, Sweep::kBudget, b, scope);
+      const double time = quantile(p.seconds, 0.5);
+      if (time > 0) s.points.emplace_back(time, 100 * summarize(p.errors).adds_auc);
+    }
+    plot.series.push_back(s);
+  }
+  return plot;
+}
+
+std::string machine() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string model = "unknown CPU";
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", &utc);
+  return fmt::format("{} cores of {}; {}", std::thread::hardware_concurrency(), model, date);
+}
+
+std::vector<LabelledTarget> mainTargets(const BenchData& d) {
+  std::vector<LabelledTarget> rows;
+  for (const BenchRun& r : d.runs) {
+    if (r.sweep != Sweep::kNone) continue;
+    for (size_t i = 0; i < r.targets.size(); ++i) {
+      rows.push_back({{r.method, d.inputs[r.input].dataset_name, d.inputs[r.input].source},
+                      r.targets[i],
+                      r.seconds[i]});
+    }
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string BenchInput::tag() const {
+  std::string t = name();
+  std::replace_if(
+      t.begin(), t.end(), [](char c) { return !std::isalnum(c) && c != '-' && c != '.'; }, '_');
+  return t;
+}
+
+std::string BenchRun::label(const std::vector<BenchInput>& inputs) const {
+  const std::string base = method + " on " + inputs[input].name();
+  if (sweep == Sweep::kThreshold) return fmt::format("{}, threshold {:g}", base, value);
+  if (sweep == Sweep::kBudget) return fmt::format("{}, budget {:g} s", base, value);
+  return base;
+}
+
+void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool plots) {
+  const ReportTable main_table = mainTable(d);
+  std::string md =
+      fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d.command, machine());
+  md += "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() +
+        "Time per object: the method's wall time for one object (after the frame's images and the "
+        "models are loaded), median and 90th percentile over the targets the run reported. Peak "
+        "memory: the maximum resident set size of the `stocs estimate` process that ran the "
+        "method on the dataset (one process per run). Failed runs: runs that crashed or exited "
+        "with an error; their targets count as missing.\n";
+  writeTextFile(out / "summary.csv", main_table.csv());
+  writeTextFile(out / "targets.csv", targetsCsv({"method", "dataset", "source"}, mainTargets(d)));
+
+  // The pooled figure first, then one per input when there are several.
+  std::vector<Scope> plot_scopes = {widest(d)};
+  if (d.inputs.size() > 1) {
+    for (size_t i = 0; i < d.inputs.size(); ++i) plot_scopes.push_back(i);
+  }
+  const auto figures = [&](const std::string& stem, LinePlot (*make)(const BenchData&, Scope)) {
+    std::string links;
+    for (Scope scope : plot_scopes) {
+      const std::string file = fmt::format("plots/{}_{}.png", stem, scopeTag(d, scope));
+      if (plots) renderPlot(make(d, scope), out / file);
+      links += fmt::format("![{}, {}]({})\n", stem, scopeName(d, scope), file);
+    }
+    return plots ? "\n" + links : std::string();
+  };
+  md += "\n## ADD-S accuracy-threshold curves\n" + figures("accuracy_threshold", accuracyPlot);
+
+  struct SweepSection {
+    Sweep sweep;
+    const std::vector<double>& values;
+    const char* heading;
+    const char* how;
+    const char* stem;
+    LinePlot (*plot)(const BenchData&, Scope);
+  };
+  const SweepSection sections[] = {
+      {Sweep::kThreshold, d.thresholds, "Success rate versus segmentation threshold",
+       "Each method run again at every threshold: StoCS's epsilon (`--epsilon`) and the hard "
+       "segment's threshold (`--hard-threshold`) are both set to it.",
+       "threshold_sweep", thresholdPlot},
+      {Sweep::kBudget, d.budgets, "Accuracy versus time budget (anytime)",
+       "Each method run again with `--time-budget` at every value, with a number of bases so "
+       "large that the budget ends the search.",
+       "budget_sweep", anytimePlot},
+  };
+  for (const SweepSection& s : sections) {
+    if (s.values.empty()) continue;
+    md += fmt::format("\n## {}\n\n{}\n\n", s.heading, s.how) +
+          sweepTable(d, s.sweep, s.values, widest(d)).markdown() + figures(s.stem, s.plot);
+    writeTextFile(out / (std::string(s.stem) + ".csv"),
+                  sweepTable(d, s.sweep, s.values, std::nullopt).csv());
+  }
+
+  std::string notes;
+  for (const std::string& n : d.notes) notes += "- " + n + "\n";
+  for (const BenchRun& r : d.runs) {
+    if (!r.failure.empty()) notes += fmt::format("- {}: {}\n", r.label(d.inputs), r.failure);
+  }
+  if (!notes.empty()) md += "\n## Notes and failures\n\n" + notes;
+  writeTextFile(out / "results.md", md);
+}
+
+}  // namespace stocs::tools

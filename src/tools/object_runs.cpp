@@ -1,0 +1,46 @@
+#include "object_runs.h"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "report_table.h"
+#include "stocs/error.h"
+
+namespace stocs::tools {
+
+void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs) {
+  std::string text = "scene_id,im_id,obj_id,found,seconds,segment_points,hypotheses\n";
+  for (const ObjectRun& r : runs) {
+    text +=
+        fmt::format("{},{},{},{},{:.6f},{},{}\n", r.target.scene_id, r.target.im_id,
+                    r.target.obj_id, r.found ? 1 : 0, r.seconds, r.segment_points, r.hypotheses);
+  }
+  writeTextFile(file, text);
+}
+
+std::vector<ObjectRun> readObjectRuns(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot open", file.string()));
+  std::vector<ObjectRun> runs;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    if (line_no == 1 || line.empty()) continue;  // header
+    std::stringstream ss(line);
+    ObjectRun r;
+    int found = 0;
+    char c[6];
+    if (!(ss >> r.target.scene_id >> c[0] >> r.target.im_id >> c[1] >> r.target.obj_id >> c[2] >>
+          found >> c[3] >> r.seconds >> c[4] >> r.segment_points >> c[5] >> r.hypotheses) ||
+        std::string(c, 6) != ",,,,,,") {
+      throw InputError(
+          fmt::format("{}:{}: expected 7 comma-separated numbers", file.string(), line_no));
+    }
+    r.found = found != 0;
+    runs.push_back(r);
+  }
+  return runs;
+}
+
+}  // namespace stocs::tools

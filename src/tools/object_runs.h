@@ -1,0 +1,26 @@
+#pragma once
+// What `stocs estimate --per-object FILE` records for every (image, object) it attempts, found or
+// not: the method's own time for the object, which BOP results (one time per image) cannot hold.
+// CSV: scene_id,im_id,obj_id,found,seconds,segment_points,hypotheses.
+
+#include <filesystem>
+#include <vector>
+
+#include "stocs/eval/dataset_evaluation.h"
+
+namespace stocs::tools {
+
+struct ObjectRun {
+  Target target;
+  bool found = false;
+  double seconds = 0;  ///< wall time of the method's estimate() for this object
+  size_t segment_points = 0;
+  long hypotheses = 0;
+};
+
+void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs);
+
+/// Throws InputError naming the file and line of a malformed row.
+std::vector<ObjectRun> readObjectRuns(const std::filesystem::path& file);
+
+}  // namespace stocs::tools
