@@ -16,5 +16,6 @@ Command registerEstimate(CLI::App& app);
 Command registerEval(CLI::App& app);
 Command registerBench(CLI::App& app);
 Command registerPrepare(CLI::App& app);
+Command registerOverlay(CLI::App& app);
 
 }  // namespace stocs::tools
