@@ -1,0 +1,60 @@
+#pragma once
+// Helpers of the rostest test nodes: waiting for messages, ground truth from the played dataset,
+// and pose errors.
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <Eigen/Geometry>
+#include <condition_variable>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <string>
+
+namespace stocs_ros::test {
+
+/// The first message on `topic` within `timeout` seconds (callbacks must be served by a spinner).
+template <class Message>
+std::optional<Message> waitForMessage(const std::string& topic, double timeout,
+                                      const std::function<bool(const Message&)>& accept = {}) {
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::optional<Message> received;
+  ros::NodeHandle nh;
+  const boost::function<void(const boost::shared_ptr<const Message>&)> callback =
+      [&](const boost::shared_ptr<const Message>& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!received && (!accept || accept(*m))) {
+          received = *m;
+          arrived.notify_all();
+        }
+      };
+  ros::Subscriber sub = nh.subscribe<Message>(topic, 5, callback);
+  std::unique_lock<std::mutex> lock(mutex);
+  arrived.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return received.has_value(); });
+  std::optional<Message> out = received;
+  lock.unlock();
+  sub.shutdown();
+  return out;
+}
+
+/// Model-to-camera pose (metres) of the first ground-truth instance of `obj_id` in a BOP frame.
+Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scene, int image,
+                                  int obj_id);
+
+/// Translation error (metres) and rotation angle (radians) between two poses.
+double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+double rotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+/// The data folder of a test on real data, from the environment (as the launch file saw it):
+/// skips when STOCS_DATASETS is unset, fails when it names a missing folder.
+#define STOCS_ROS_REQUIRE_DATASETS(var)                                                   \
+  const char* stocs_datasets_env = std::getenv("STOCS_DATASETS");                         \
+  if (!stocs_datasets_env || !*stocs_datasets_env)                                        \
+    GTEST_SKIP() << "STOCS_DATASETS is not set; real-data test skipped";                  \
+  const std::filesystem::path var = stocs_datasets_env;                                   \
+  ASSERT_TRUE(std::filesystem::is_directory(var))                                         \
+      << "STOCS_DATASETS is set to '" << var.string() << "' but that folder does not exist"
+
+}  // namespace stocs_ros::test
