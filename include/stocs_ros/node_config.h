@@ -15,13 +15,13 @@
 namespace stocs_ros {
 
 struct ObjectConfig {
-  std::string name;                ///< topic and TF name component
-  int id = 0;                      ///< numeric id in the outputs (default: position in the list + 1)
-  std::filesystem::path model;     ///< model file (PLY), resolved
-  float unit_scale = 0.001f;       ///< model units to metres
-  std::string mesh_url;            ///< rviz mesh_resource; empty: markers show the model samples
-  float mesh_scale = 0.001f;       ///< mesh units to metres (default: unit_scale)
-  ObjectSymmetries symmetries;     ///< in metres
+  std::string name;             ///< topic and TF name component
+  int id = 0;                   ///< numeric id in the outputs (default: position in the list + 1)
+  std::filesystem::path model;  ///< model file (PLY), resolved
+  float unit_scale = 0.001f;    ///< model units to metres
+  std::string mesh_url;         ///< rviz mesh_resource; empty: markers show the model samples
+  float mesh_scale = 0.001f;    ///< mesh units to metres (default: unit_scale)
+  ObjectSymmetries symmetries;  ///< in metres
 };
 
 enum class DepthSource { kCloud, kDepthImage };
@@ -38,7 +38,7 @@ struct InputConfig {
 };
 
 struct OutputConfig {
-  std::string frame_prefix;        ///< TF child frame = frame_prefix + object name
+  std::string frame_prefix;  ///< TF child frame = frame_prefix + object name
   bool tf = true;
   bool markers = true;
   bool estimate_on_frames = true;  ///< false: estimate only on ~estimate calls

@@ -12,8 +12,8 @@ namespace stocs_ros {
 std::filesystem::path resolveResourcePath(const std::string& text,
                                           const std::filesystem::path& base_dir);
 
-/// A URL rviz can load (a mesh_resource): package:// URLs stay as they are (after $(env) expansion),
-/// anything else becomes file:// and an absolute path.
+/// A URL rviz can load (a mesh_resource): package:// URLs stay as they are (after $(env)
+/// expansion), anything else becomes file:// and an absolute path.
 std::string resourceUrl(const std::string& text, const std::filesystem::path& base_dir);
 
 }  // namespace stocs_ros

@@ -23,7 +23,8 @@ namespace stocs_ros {
 struct SyncParams {
   double tolerance = 0.01;  ///< seconds between the reference stamp and the stamps it is matched to
   int queue_size = 10;      ///< messages kept per input while waiting for a match
-  double max_age = 2.0;     ///< seconds behind the newest stamp seen before a message is dropped; 0: never
+  /// Seconds behind the newest stamp seen before a message is dropped; 0: never.
+  double max_age = 2.0;
 
   /// Throws stocs::InputError naming the first value out of range.
   void validate() const;
@@ -77,8 +78,9 @@ class StampSynchronizer {
       }
     }
     std::deque<Entry>& queue = queues_[input];
-    const auto at = std::upper_bound(queue.begin(), queue.end(), stamp,
-                                     [](const ros::Time& s, const Entry& e) { return s < e.stamp; });
+    const auto at =
+        std::upper_bound(queue.begin(), queue.end(), stamp,
+                         [](const ros::Time& s, const Entry& e) { return s < e.stamp; });
     queue.insert(at, Entry{stamp, std::move(message)});
     if (static_cast<int>(queue.size()) > params_.queue_size) {
       drop(input, queue.front().stamp, DropReason::kQueueFull, dropped);

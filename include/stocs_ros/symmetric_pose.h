@@ -17,7 +17,8 @@ struct ContinuousSymmetry {
 };
 
 struct ObjectSymmetries {
-  std::vector<Eigen::Isometry3f> discrete;  ///< model-frame transforms (metres), identity not listed
+  std::vector<Eigen::Isometry3f>
+      discrete;  ///< model-frame transforms (metres), identity not listed
   std::vector<ContinuousSymmetry> continuous;
 
   bool empty() const { return discrete.empty() && continuous.empty(); }

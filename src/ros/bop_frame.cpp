@@ -34,10 +34,9 @@ BopFrame loadBopFrame(const stocs::BopDataset& dataset, int scene, int image,
                     ? dataset.loadProbability(scene, image, id)
                     : cv::Mat(raw.size(), CV_32FC1, cv::Scalar(0));
     if (p.size() != raw.size()) {
-      throw stocs::InputError(
-          fmt::format("{}: probability map is {}x{} but the depth is {}x{}",
-                      dataset.probabilityPath(scene, image, id).string(), p.cols, p.rows, raw.cols,
-                      raw.rows));
+      throw stocs::InputError(fmt::format("{}: probability map is {}x{} but the depth is {}x{}",
+                                          dataset.probabilityPath(scene, image, id).string(),
+                                          p.cols, p.rows, raw.cols, raw.rows));
     }
     frame.probabilities.push_back(p);
   }

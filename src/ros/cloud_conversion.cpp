@@ -28,8 +28,9 @@ stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg) {
   uint32_t offsets[3];
   for (int a = 0; a < 3; ++a) {
     const std::string axis(1, "xyz"[a]);
-    const auto field = std::find_if(msg.fields.begin(), msg.fields.end(),
-                                    [&](const sensor_msgs::PointField& f) { return f.name == axis; });
+    const auto field =
+        std::find_if(msg.fields.begin(), msg.fields.end(),
+                     [&](const sensor_msgs::PointField& f) { return f.name == axis; });
     if (field == msg.fields.end() || field->datatype != sensor_msgs::PointField::FLOAT32 ||
         field->offset + 4 > msg.point_step) {
       throw InputError(fmt::format("cloud has no float32 field '{}' within its point step", axis));
@@ -38,10 +39,10 @@ stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg) {
   }
   if (msg.row_step < static_cast<size_t>(msg.width) * msg.point_step ||
       msg.data.size() < static_cast<size_t>(msg.row_step) * msg.height) {
-    throw InputError(fmt::format("cloud {}x{} has row step {} and {} data bytes; too few for {} "
-                                 "bytes per point",
-                                 msg.width, msg.height, msg.row_step, msg.data.size(),
-                                 msg.point_step));
+    throw InputError(
+        fmt::format("cloud {}x{} has row step {} and {} data bytes; too few for {} "
+                    "bytes per point",
+                    msg.width, msg.height, msg.row_step, msg.data.size(), msg.point_step));
   }
   stocs::OrganizedCloud cloud(static_cast<int>(msg.width), static_cast<int>(msg.height));
   // By offsets rather than PointCloud2ConstIterator, which does not skip padding at row ends.
@@ -57,8 +58,9 @@ stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg) {
 
 stocs::CameraIntrinsics intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info) {
   if (info.binning_x > 1 || info.binning_y > 1 || info.roi.width != 0 || info.roi.height != 0) {
-    throw InputError("camera_info uses binning or a region of interest; the depth image must be "
-                     "the full, unbinned image");
+    throw InputError(
+        "camera_info uses binning or a region of interest; the depth image must be "
+        "the full, unbinned image");
   }
   stocs::CameraIntrinsics k;
   k.fx = info.K[0];
@@ -83,9 +85,9 @@ stocs::OrganizedCloud cloudFromDepthImage(const sensor_msgs::ImageConstPtr& dept
   } else if (view.type() == CV_32FC1) {
     metres_per_unit = 1.0;
   } else {
-    throw InputError(fmt::format(
-        "depth image has encoding '{}'; REP 118 depth is 16UC1 (mm) or 32FC1 (m)",
-        depth->encoding));
+    throw InputError(
+        fmt::format("depth image has encoding '{}'; REP 118 depth is 16UC1 (mm) or 32FC1 (m)",
+                    depth->encoding));
   }
   return stocs::cloudFromDepth(view, intrinsicsFromCameraInfo(info), metres_per_unit);
 }

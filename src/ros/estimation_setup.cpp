@@ -7,8 +7,7 @@
 namespace stocs_ros {
 
 std::shared_ptr<const EstimationSetup> EstimationSetup::load(
-    const std::filesystem::path& config_file,
-    const std::function<void(const std::string&)>& log) {
+    const std::filesystem::path& config_file, const std::function<void(const std::string&)>& log) {
   auto setup = std::make_shared<EstimationSetup>();
   setup->config = loadNodeConfig(config_file);
   const stocs::ModelCache cache(setup->config.model_cache);

@@ -63,14 +63,14 @@ FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup
     cloud = naming("cloud", [&] { return cloudFromMsg(*frame.cloud); });
     focal_px = naming("cloud", [&] { return static_cast<float>(intrinsicsFromCloud(cloud).fx); });
   } else {
-    cloud = naming("depth image", [&] { return cloudFromDepthImage(frame.depth, *frame.camera_info); });
+    cloud =
+        naming("depth image", [&] { return cloudFromDepthImage(frame.depth, *frame.camera_info); });
     focal_px = static_cast<float>(frame.camera_info->K[0]);
   }
   const std::vector<cv::Mat> probability = probabilities(job, config);
-  const cv::Mat boundary = frame.boundary ? naming("boundary image", [&] {
-    return boundaryFromImage(frame.boundary);
-  })
-                                          : cv::Mat();
+  const cv::Mat boundary =
+      frame.boundary ? naming("boundary image", [&] { return boundaryFromImage(frame.boundary); })
+                     : cv::Mat();
   stocs::PipelineParams params = config.estimation;
   if (job.time_budget) params.stocs.time_budget = *job.time_budget;
 
@@ -80,9 +80,9 @@ FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup
     const std::string what = fmt::format("object '{}'", config.objects[i].name);
     if (probability[i].empty()) throw InputError(what + ": the frame has no probability image");
     result.objects.push_back({i, naming(what, [&] {
-                                return stocs::estimateObject(cloud, focal_px, probability[i],
-                                                             setup.models[i], params,
-                                                             boundary.empty() ? nullptr : &boundary);
+                                return stocs::estimateObject(
+                                    cloud, focal_px, probability[i], setup.models[i], params,
+                                    boundary.empty() ? nullptr : &boundary);
                               })});
   }
   return result;

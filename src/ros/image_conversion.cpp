@@ -41,10 +41,10 @@ cv::Mat imageView(const sensor_msgs::ImageConstPtr& msg) {
     throw InputError(fmt::format("image is empty ({}x{})", msg->width, msg->height));
   }
   if (msg->step < row_bytes || msg->data.size() < static_cast<size_t>(msg->step) * msg->height) {
-    throw InputError(fmt::format(
-        "image {}x{} '{}' has step {} and {} data bytes; it needs at least {} and {}", msg->width,
-        msg->height, msg->encoding, msg->step, msg->data.size(), row_bytes,
-        row_bytes * msg->height));
+    throw InputError(
+        fmt::format("image {}x{} '{}' has step {} and {} data bytes; it needs at least {} and {}",
+                    msg->width, msg->height, msg->encoding, msg->step, msg->data.size(), row_bytes,
+                    row_bytes * msg->height));
   }
   return cv_bridge::toCvShare(msg)->image;
 }
@@ -52,8 +52,9 @@ cv::Mat imageView(const sensor_msgs::ImageConstPtr& msg) {
 cv::Mat probabilityFromImage(const sensor_msgs::ImageConstPtr& msg, double uint16_scale) {
   const cv::Mat view = imageView(msg);
   if (view.channels() != 1) {
-    throw InputError(fmt::format("probability image has encoding '{}' with {} channels; expected {}",
-                                 msg->encoding, view.channels(), kProbabilityEncodings));
+    throw InputError(
+        fmt::format("probability image has encoding '{}' with {} channels; expected {}",
+                    msg->encoding, view.channels(), kProbabilityEncodings));
   }
   return stocs::toProbabilityImage(view, uint16_scale);
 }
@@ -82,8 +83,8 @@ std::vector<cv::Mat> probabilitiesFromChannels(const sensor_msgs::ImageConstPtr&
 cv::Mat boundaryFromImage(const sensor_msgs::ImageConstPtr& msg) {
   const cv::Mat view = imageView(msg);
   if (view.type() != CV_8UC1) {
-    throw InputError(fmt::format("boundary image has encoding '{}'; expected mono8 (8UC1)",
-                                 msg->encoding));
+    throw InputError(
+        fmt::format("boundary image has encoding '{}'; expected mono8 (8UC1)", msg->encoding));
   }
   return view.clone();
 }

@@ -159,9 +159,10 @@ ObjectConfig readObject(MapReader reader, int position, const fs::path& dir) {
   // Names become topic names (~probability/<name>) and TF frames: one ROS graph name token.
   static const std::regex kName("[A-Za-z][A-Za-z0-9_]*");
   if (!std::regex_match(o.name, kName)) {
-    throw InputError(fmt::format("{}name '{}' must start with a letter and hold only letters, "
-                                 "digits and underscores",
-                                 where, o.name));
+    throw InputError(
+        fmt::format("{}name '{}' must start with a letter and hold only letters, "
+                    "digits and underscores",
+                    where, o.name));
   }
   if (model.empty()) throw InputError(fmt::format("{}model is missing", where));
   if (!(o.unit_scale > 0) || !(o.mesh_scale > 0)) {
@@ -225,8 +226,8 @@ void checkChannels(const NodeConfig& c) {
   const std::string file = c.file.string();
   if (c.input.probability != ProbabilitySource::kMultichannel) {
     if (!c.input.channels.empty()) {
-      throw InputError(
-          fmt::format("{}: input.channels is only used with input.probability: multichannel", file));
+      throw InputError(fmt::format(
+          "{}: input.channels is only used with input.probability: multichannel", file));
     }
     return;
   }
@@ -234,9 +235,10 @@ void checkChannels(const NodeConfig& c) {
   for (const std::string& name : c.input.channels) {
     if (name == "-") continue;
     if (c.objectIndex(name) < 0) {
-      throw InputError(fmt::format("{}: input.channels names '{}', which is not a configured "
-                                   "object ({}); use '-' for a channel to ignore",
-                                   file, name, c.objectNames()));
+      throw InputError(
+          fmt::format("{}: input.channels names '{}', which is not a configured "
+                      "object ({}); use '-' for a channel to ignore",
+                      file, name, c.objectNames()));
     }
     if (!seen.insert(name).second) {
       throw InputError(fmt::format("{}: input.channels names '{}' twice", file, name));
@@ -244,7 +246,8 @@ void checkChannels(const NodeConfig& c) {
   }
   for (const ObjectConfig& o : c.objects) {
     if (!seen.count(o.name)) {
-      throw InputError(fmt::format("{}: object '{}' has no channel in input.channels", file, o.name));
+      throw InputError(
+          fmt::format("{}: object '{}' has no channel in input.channels", file, o.name));
     }
   }
 }

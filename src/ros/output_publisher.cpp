@@ -25,7 +25,8 @@ void OutputPublisher::publishTransforms(const FrameResult& result, const Estimat
   std::vector<geometry_msgs::TransformStamped> transforms;
   for (const ObjectOutcome& o : result.objects) {
     if (!o.estimate.estimate.found) continue;
-    const std::string child = setup.config.output.frame_prefix + setup.config.objects[o.object].name;
+    const std::string child =
+        setup.config.output.frame_prefix + setup.config.objects[o.object].name;
     const auto last = tf_stamps_.find(child);
     if (last != tf_stamps_.end() && result.header.stamp <= last->second) continue;
     geometry_msgs::TransformStamped t =

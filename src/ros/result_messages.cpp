@@ -47,7 +47,8 @@ visualization_msgs::Marker bodyMarker(const ObjectOutcome& o, const EstimationSe
   const std::vector<Eigen::Vector3f>& samples = setup.models[o.object].model.points;
   m.type = visualization_msgs::Marker::POINTS;
   m.scale.x = m.scale.y = std::max(0.002f, setup.models[o.object].model.sampling_radius);
-  const size_t stride = std::max<size_t>(1, (samples.size() + kMaxMarkerPoints - 1) / kMaxMarkerPoints);
+  const size_t stride =
+      std::max<size_t>(1, (samples.size() + kMaxMarkerPoints - 1) / kMaxMarkerPoints);
   for (size_t i = 0; i < samples.size(); i += stride) {
     geometry_msgs::Point p;
     p.x = samples[i].x();

@@ -25,6 +25,17 @@ std::string requiredParam(const ros::NodeHandle& pnh, const std::string& name) {
   return value;
 }
 
+/// A list-of-integers parameter (empty when unset); roscpp would silently ignore a value of another
+/// type, such as `_scenes:=4` given on the command line.
+std::vector<int> intListParam(const ros::NodeHandle& pnh, const std::string& name) {
+  std::vector<int> values;
+  if (pnh.hasParam(name) && !pnh.getParam(name, values)) {
+    throw InputError(fmt::format("parameter {}/{} must be a list of integers, such as [0, 3]",
+                                 pnh.getNamespace(), name));
+  }
+  return values;
+}
+
 /// OpenCV depth and the ROS encoding of a probability image with `channels` channels.
 std::pair<int, std::string> probabilityFormat(const std::string& encoding, size_t channels) {
   const std::string n = std::to_string(channels);
@@ -33,7 +44,8 @@ std::pair<int, std::string> probabilityFormat(const std::string& encoding, size_
   return {CV_32F, "32FC" + n};
 }
 
-sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k, const std_msgs::Header& header) {
+sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
+                                   const std_msgs::Header& header) {
   sensor_msgs::CameraInfo info;
   info.header = header;
   info.width = k.width;
@@ -62,12 +74,12 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
   }
   if (probability_encoding_ != "mono16" && probability_encoding_ != "mono8" &&
       probability_encoding_ != "32FC1") {
-    throw InputError(fmt::format("parameter probability_encoding '{}' must be mono16, mono8 or 32FC1",
-                                 probability_encoding_));
+    throw InputError(
+        fmt::format("parameter probability_encoding '{}' must be mono16, mono8 or 32FC1",
+                    probability_encoding_));
   }
-  std::vector<int> scenes, images;
-  pnh.getParam("scenes", scenes);
-  pnh.getParam("images", images);
+  std::vector<int> scenes = intListParam(pnh, "scenes");
+  const std::vector<int> images = intListParam(pnh, "images");
   if (scenes.empty()) scenes = dataset_.sceneIds();
   for (int scene : scenes) {
     if (!std::filesystem::is_directory(dataset_.sceneDir(scene))) {
@@ -151,8 +163,8 @@ void ScenePublisher::publish(const FrameRef& ref, const BopFrame& frame) {
 
 void ScenePublisher::publishProbabilities(const BopFrame& frame, const std_msgs::Header& header) {
   const bool multichannel = config_.input.probability == ProbabilitySource::kMultichannel;
-  const auto [depth, encoding] = probabilityFormat(
-      probability_encoding_, multichannel ? config_.input.channels.size() : 1);
+  const auto [depth, encoding] =
+      probabilityFormat(probability_encoding_, multichannel ? config_.input.channels.size() : 1);
   const double scale = depth == CV_16U ? config_.input.uint16_scale : depth == CV_8U ? 255.0 : 1.0;
   std::vector<cv::Mat> encoded;
   for (const cv::Mat& p : frame.probabilities) {

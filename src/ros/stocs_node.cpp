@@ -17,8 +17,8 @@ constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of w
 std::string requireConfigParameter(const ros::NodeHandle& pnh) {
   std::string file;
   if (!pnh.getParam("config", file) || file.empty()) {
-    throw InputError(fmt::format("parameter {}/config (the configuration file) is not set",
-                                 pnh.getNamespace()));
+    throw InputError(
+        fmt::format("parameter {}/config (the configuration file) is not set", pnh.getNamespace()));
   }
   return file;
 }
@@ -228,8 +228,8 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
   for (const std::string& name : request.objects) {
     const int i = config.objectIndex(name);
     if (i < 0) {
-      throw InputError(fmt::format("unknown object '{}'; configured objects: {}", name,
-                                   config.objectNames()));
+      throw InputError(
+          fmt::format("unknown object '{}'; configured objects: {}", name, config.objectNames()));
     }
     job.objects.push_back(static_cast<size_t>(i));
   }
@@ -255,9 +255,10 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
     return job;
   }
   if (request.probabilities.size() != job.objects.size()) {
-    throw InputError(fmt::format("{} probability images for {} objects; give one per object, in "
-                                 "the order of `objects`",
-                                 request.probabilities.size(), job.objects.size()));
+    throw InputError(
+        fmt::format("{} probability images for {} objects; give one per object, in "
+                    "the order of `objects`",
+                    request.probabilities.size(), job.objects.size()));
   }
   job.frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
   job.frame.probabilities.resize(config.objects.size());
@@ -274,8 +275,7 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
 bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
   const std::shared_ptr<const EstimationSetup> current = setup();
   try {
-    const FrameResult result =
-        worker_->request({serviceJob(request, *current), current}).get();
+    const FrameResult result = worker_->request({serviceJob(request, *current), current}).get();
     response.result = toObjectPoseArray(result, *current);
     response.success = true;
     response.message = describeOutcome(result, current->config);
@@ -297,8 +297,8 @@ bool StocsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Respons
       setup_ = fresh;
     }
     response.success = true;
-    response.message = fmt::format("reloaded {} objects from {}", fresh->config.objects.size(),
-                                   config_file_);
+    response.message =
+        fmt::format("reloaded {} objects from {}", fresh->config.objects.size(), config_file_);
   } catch (const InputError& e) {
     response.success = false;
     response.message = e.what();

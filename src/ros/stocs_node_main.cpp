@@ -2,4 +2,6 @@
 #include "stocs_ros/run_node.h"
 #include "stocs_ros/stocs_node.h"
 
-int main(int argc, char** argv) { return stocs_ros::runNode<stocs_ros::StocsNode>(argc, argv, "stocs"); }
+int main(int argc, char** argv) {
+  return stocs_ros::runNode<stocs_ros::StocsNode>(argc, argv, "stocs");
+}

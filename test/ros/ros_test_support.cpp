@@ -1,6 +1,8 @@
 #include "ros_test_support.h"
 
 #include "stocs/bop_dataset.h"
+#include "stocs/mesh.h"
+#include "stocs/pose_metrics.h"
 
 namespace stocs_ros::test {
 
@@ -16,6 +18,16 @@ Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scen
   }
   ADD_FAILURE() << dataset.string() << ": no ground truth for object " << obj_id;
   return Eigen::Isometry3d::Identity();
+}
+
+double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                         const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth) {
+  const stocs::BopDataset ds(dataset);
+  const stocs::MeshData model = stocs::loadMesh(ds.modelPath(obj_id).string(), 0.001f);
+  const stocs::RigidPose estimate{pose.linear(), pose.translation()};
+  const double error =
+      stocs::addsError(model.vertices, estimate, {truth.linear(), truth.translation()});
+  return error / stocs::pointSetDiameter(model.vertices);
 }
 
 double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {

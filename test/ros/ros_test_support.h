@@ -32,7 +32,8 @@ std::optional<Message> waitForMessage(const std::string& topic, double timeout,
       };
   ros::Subscriber sub = nh.subscribe<Message>(topic, 5, callback);
   std::unique_lock<std::mutex> lock(mutex);
-  arrived.wait_for(lock, std::chrono::duration<double>(timeout), [&] { return received.has_value(); });
+  arrived.wait_for(lock, std::chrono::duration<double>(timeout),
+                   [&] { return received.has_value(); });
   std::optional<Message> out = received;
   lock.unlock();
   sub.shutdown();
@@ -43,18 +44,24 @@ std::optional<Message> waitForMessage(const std::string& topic, double timeout,
 Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scene, int image,
                                   int obj_id);
 
+/// ADD-S error of `pose` against `truth` (model-to-camera, metres) on the vertices of the dataset's
+/// model of `obj_id`, as a fraction of the model's diameter: the acceptance measure of the
+/// real-frame tests, which forgives what the shape cannot tell apart.
+double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                         const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
+
 /// Translation error (metres) and rotation angle (radians) between two poses.
 double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
 double rotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
 
 /// The data folder of a test on real data, from the environment (as the launch file saw it):
 /// skips when STOCS_DATASETS is unset, fails when it names a missing folder.
-#define STOCS_ROS_REQUIRE_DATASETS(var)                                                   \
-  const char* stocs_datasets_env = std::getenv("STOCS_DATASETS");                         \
-  if (!stocs_datasets_env || !*stocs_datasets_env)                                        \
-    GTEST_SKIP() << "STOCS_DATASETS is not set; real-data test skipped";                  \
-  const std::filesystem::path var = stocs_datasets_env;                                   \
-  ASSERT_TRUE(std::filesystem::is_directory(var))                                         \
+#define STOCS_ROS_REQUIRE_DATASETS(var)                                  \
+  const char* stocs_datasets_env = std::getenv("STOCS_DATASETS");        \
+  if (!stocs_datasets_env || !*stocs_datasets_env)                       \
+    GTEST_SKIP() << "STOCS_DATASETS is not set; real-data test skipped"; \
+  const std::filesystem::path var = stocs_datasets_env;                  \
+  ASSERT_TRUE(std::filesystem::is_directory(var))                        \
       << "STOCS_DATASETS is set to '" << var.string() << "' but that folder does not exist"
 
 }  // namespace stocs_ros::test

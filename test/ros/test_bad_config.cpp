@@ -12,12 +12,18 @@ namespace {
 
 constexpr char kObject[] = "objects:\n  - name: box\n    model: box.ply\n";
 
-/// Runs `executable` with ROS arguments; `timeout` ends it if it wrongly keeps running. Each run
-/// has a node name of its own: private parameters stay on the parameter server after a run.
-int run(const std::string& executable, const std::string& args, std::string& output) {
+/// A node name of its own for each run: private parameters stay on the parameter server after a
+/// run.
+std::string nextNodeName() {
   static int runs = 0;
-  return stocs::test::runCommand("timeout 60 " + executable + " __name:=probe_" +
-                                     std::to_string(++runs) + " " + args,
+  return "probe_" + std::to_string(++runs);
+}
+
+/// Runs `executable` as node `name` with ROS arguments; `timeout` ends it if it wrongly keeps
+/// running.
+int run(const std::string& executable, const std::string& args, std::string& output,
+        const std::string& name = nextNodeName()) {
+  return stocs::test::runCommand("timeout 60 " + executable + " __name:=" + name + " " + args,
                                  output);
 }
 
@@ -40,17 +46,18 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
 
   expectNodeFails(dir / "missing.yaml", "cannot open the configuration file");
   expectNodeFails(writeConfig(dir, "broken.yaml", "objects: [\n"), "invalid YAML");
-  expectNodeFails(writeConfig(dir, "unknown_key.yaml", std::string(kObject) +
-                                                           "estimation:\n  stocs:\n    basez: 3\n"),
+  expectNodeFails(writeConfig(dir, "unknown_key.yaml",
+                              std::string(kObject) + "estimation:\n  stocs:\n    basez: 3\n"),
                   "estimation.stocs.basez: unknown key");
+  expectNodeFails(writeConfig(dir, "out_of_range.yaml",
+                              std::string(kObject) + "estimation: {stocs: {bases: 0}}\n"),
+                  "bases 0 is outside");
+  expectNodeFails(writeConfig(dir, "wrong_type.yaml",
+                              std::string(kObject) + "input: {sync: {tolerance: soon}}\n"),
+                  "input.sync.tolerance: expected a number, got 'soon'");
   expectNodeFails(
-      writeConfig(dir, "out_of_range.yaml", std::string(kObject) + "estimation: {stocs: {bases: 0}}\n"),
-      "bases 0 is outside");
-  expectNodeFails(
-      writeConfig(dir, "wrong_type.yaml", std::string(kObject) + "input: {sync: {tolerance: soon}}\n"),
-      "input.sync.tolerance: expected a number, got 'soon'");
-  expectNodeFails(writeConfig(dir, "no_model.yaml", "objects:\n  - name: box\n    model: nowhere.ply\n"),
-                  "object 'box': model " + (dir / "nowhere.ply").string());
+      writeConfig(dir, "no_model.yaml", "objects:\n  - name: box\n    model: nowhere.ply\n"),
+      "object 'box': model " + (dir / "nowhere.ply").string());
   expectNodeFails(writeConfig(dir, "no_objects.yaml", "objects: []\n"),
                   "'objects' must be a non-empty list");
 
@@ -63,21 +70,23 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   const std::filesystem::path dir = stocs::test::scratchDir("publisher");
   const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
   std::string output;
-  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, "_config:=" + config.string() + " _dataset:=/nonexistent", output),
-            1);
+  EXPECT_EQ(
+      run(SCENE_PUBLISHER_PATH, "_config:=" + config.string() + " _dataset:=/nonexistent", output),
+      1);
   EXPECT_NE(output.find("/nonexistent"), std::string::npos) << output;
 
   const std::filesystem::path data = dir / "data";
   stocs::test::writeSyntheticBopDataset(data);
-  EXPECT_EQ(run(SCENE_PUBLISHER_PATH,
-                "_config:=" + config.string() + " _dataset:=" + data.string() + " _rate:=0.0",
-                output),
-            1);
+  const std::string args = "_config:=" + config.string() + " _dataset:=" + data.string();
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0.0", output), 1) << output;
   EXPECT_NE(output.find("rate 0 Hz is outside (0, 100]"), std::string::npos) << output;
-  EXPECT_EQ(run(SCENE_PUBLISHER_PATH,
-                "_config:=" + config.string() + " _dataset:=" + data.string() + " _scenes:=[4]",
-                output),
-            1);
+  // roscpp reads `_scenes:=4` as an integer, not a list.
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _scenes:=4", output), 1) << output;
+  EXPECT_NE(output.find("scenes must be a list of integers"), std::string::npos) << output;
+  // A list comes from the parameter server, as roslaunch sets it.
+  const std::string name = nextNodeName();
+  ros::param::set("/" + name + "/scenes", std::vector<int>{4});
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args, output, name), 1) << output;
   EXPECT_NE(output.find("scene 4 does not exist"), std::string::npos) << output;
 }
 

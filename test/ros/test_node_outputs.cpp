@@ -29,6 +29,8 @@ struct Expected {
   int scene = 0, image = 0, obj_id = 1;
   std::string object, frame_id, node, cloud_topic, probability_topic;
   double max_translation = 0.01, max_rotation = 0.1, input_rate = 1.0;
+  /// When positive: ADD-S limit as a fraction of the diameter, instead of max_rotation.
+  double max_adds = 0;
   bool service_inputs = true;
 };
 Expected g_expected;
@@ -50,16 +52,23 @@ class NodeOutputs : public ::testing::Test {
       dataset = root / g_expected.dataset;
     }
     truth_ = groundTruthPose(dataset, g_expected.scene, g_expected.image, g_expected.obj_id);
+    dataset_ = dataset;
   }
 
   void expectNearTruth(const Eigen::Isometry3d& pose, const std::string& what) const {
     EXPECT_LT(translationError(pose, truth_), g_expected.max_translation) << what;
-    EXPECT_LT(rotationError(pose, truth_), g_expected.max_rotation) << what;
+    if (g_expected.max_adds > 0) {
+      EXPECT_LT(addsDiameterRatio(dataset_, g_expected.obj_id, pose, truth_), g_expected.max_adds)
+          << what << ": ADD-S as a fraction of the diameter";
+    } else {
+      EXPECT_LT(rotationError(pose, truth_), g_expected.max_rotation) << what;
+    }
   }
 
   static std::optional<ObjectPoseArray> nextObjects(double timeout = kFirstOutputTimeout) {
-    return waitForMessage<ObjectPoseArray>(g_expected.node + "/objects", timeout,
-                                           [](const ObjectPoseArray& m) { return !m.objects.empty(); });
+    return waitForMessage<ObjectPoseArray>(
+        g_expected.node + "/objects", timeout,
+        [](const ObjectPoseArray& m) { return !m.objects.empty(); });
   }
 
   static Estimate::Response callEstimate(Estimate::Request request) {
@@ -72,6 +81,7 @@ class NodeOutputs : public ::testing::Test {
   }
 
   Eigen::Isometry3d truth_;
+  std::filesystem::path dataset_;
 };
 
 TEST_F(NodeOutputs, ObjectsMessageIsNearTheGroundTruth) {
@@ -172,7 +182,8 @@ TEST_F(NodeOutputs, ServiceEstimatesExplicitInputsAndNamesBadOnes) {
   if (!g_expected.service_inputs) GTEST_SKIP() << "the played frame has no per-object image topic";
   const auto cloud = waitForMessage<sensor_msgs::PointCloud2>(g_expected.cloud_topic, 30);
   const auto probability = waitForMessage<sensor_msgs::Image>(g_expected.probability_topic, 30);
-  ASSERT_TRUE(cloud && probability) << g_expected.cloud_topic << ", " << g_expected.probability_topic;
+  ASSERT_TRUE(cloud && probability)
+      << g_expected.cloud_topic << ", " << g_expected.probability_topic;
 
   Estimate::Request good;
   good.objects = {g_expected.object};
@@ -254,7 +265,8 @@ TEST_F(NodeOutputs, OutputsKeepUpWithTheInputWithoutRepeatedTfStamps) {
   const std::vector<ros::Time>& stamps = tf_stamps[g_expected.object];
   EXPECT_GE(stamps.size(), 2u);
   for (size_t i = 1; i < stamps.size(); ++i) {
-    EXPECT_LT(stamps[i - 1], stamps[i]) << "TF of " << g_expected.object << " repeated or went back";
+    EXPECT_LT(stamps[i - 1], stamps[i])
+        << "TF of " << g_expected.object << " repeated or went back";
   }
 }
 
@@ -278,6 +290,7 @@ int main(int argc, char** argv) {
   pnh.getParam("probability_topic", e.probability_topic);
   pnh.getParam("max_translation", e.max_translation);
   pnh.getParam("max_rotation", e.max_rotation);
+  pnh.getParam("max_adds", e.max_adds);
   pnh.getParam("input_rate", e.input_rate);
   pnh.getParam("service_inputs", e.service_inputs);
   ros::AsyncSpinner spinner(2);

@@ -104,11 +104,11 @@ TEST(CloudConversion, DepthImagesInMillimetresAndMetresGiveTheSameCloud) {
       EXPECT_TRUE(from_mm.points[i].isApprox(from_m.points[i], 1e-6f));
     }
   }
-  EXPECT_TRUE(from_mm.at(0, 0).isApprox(Eigen::Vector3f(-2 * 0.8f / 100, -1.5f * 0.8f / 110, 0.8f)));
+  EXPECT_TRUE(
+      from_mm.at(0, 0).isApprox(Eigen::Vector3f(-2 * 0.8f / 100, -1.5f * 0.8f / 110, 0.8f)));
 
-  EXPECT_THROW(cloudFromDepthImage(cv_bridge::CvImage(header, "mono8", cv::Mat(3, 4, CV_8UC1))
-                                       .toImageMsg(),
-                                   info),
+  EXPECT_THROW(cloudFromDepthImage(
+                   cv_bridge::CvImage(header, "mono8", cv::Mat(3, 4, CV_8UC1)).toImageMsg(), info),
                stocs::InputError);
   sensor_msgs::CameraInfo no_focal = info;
   no_focal.K[0] = 0;
@@ -118,8 +118,9 @@ TEST(CloudConversion, DepthImagesInMillimetresAndMetresGiveTheSameCloud) {
   EXPECT_THROW(intrinsicsFromCameraInfo(binned), stocs::InputError);
   sensor_msgs::CameraInfo other_size = info;
   other_size.width = 8;
-  EXPECT_THROW(cloudFromDepthImage(cv_bridge::CvImage(header, "16UC1", mm).toImageMsg(), other_size),
-               stocs::InputError);
+  EXPECT_THROW(
+      cloudFromDepthImage(cv_bridge::CvImage(header, "16UC1", mm).toImageMsg(), other_size),
+      stocs::InputError);
 }
 
 }  // namespace

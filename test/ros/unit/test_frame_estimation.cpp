@@ -32,9 +32,10 @@ class FrameEstimation : public ::testing::Test {
   }
 
   static std::shared_ptr<const EstimationSetup> setup(const std::string& input) {
-    std::ofstream(*dir_ / "node.yaml") << "objects:\n  - {name: box, model: data/models/obj_000001.ply}\n"
-                                       << "model_cache: cache\n"
-                                       << input;
+    std::ofstream(*dir_ / "node.yaml")
+        << "objects:\n  - {name: box, model: data/models/obj_000001.ply}\n"
+        << "model_cache: cache\n"
+        << input;
     return EstimationSetup::load(*dir_ / "node.yaml", [](const std::string&) {});
   }
 
@@ -114,11 +115,13 @@ TEST_F(FrameEstimation, CloudAndPerObjectImageGiveTheKnownPose) {
 
 TEST_F(FrameEstimation, DepthImageAndMultichannelImageGiveTheKnownPose) {
   const auto s = setup(
-      "input: {source: depth, probability: multichannel, channels: [\"-\", box], boundary: true}\n");
+      "input: {source: depth, probability: multichannel, channels: [\"-\", box], boundary: "
+      "true}\n");
   sensor_msgs::CameraInfo info;
   info.width = frame_->camera.width;
   info.height = frame_->camera.height;
-  info.K = {frame_->camera.fx, 0, frame_->camera.cx, 0, frame_->camera.fy, frame_->camera.cy, 0, 0, 1};
+  info.K = {
+      frame_->camera.fx, 0, frame_->camera.cx, 0, frame_->camera.fy, frame_->camera.cy, 0, 0, 1};
   cv::Mat channels[2] = {cv::Mat::zeros(frame_->depth.size(), CV_8UC1), cv::Mat()};
   frame_->probabilities[0].convertTo(channels[1], CV_8UC1, 255.0);
   cv::Mat merged;
@@ -136,7 +139,8 @@ TEST_F(FrameEstimation, BadInputsAreNamed) {
   const auto s = setup("");
   EstimationJob colour = cloudJob();
   colour.frame.probabilities[0] = image("bgr8", cv::Mat(240, 320, CV_8UC3, cv::Scalar(0)));
-  EXPECT_NE(errorOf(colour, *s).find("probability image of 'box': encoding 'bgr8'"), std::string::npos)
+  EXPECT_NE(errorOf(colour, *s).find("probability image of 'box': encoding 'bgr8'"),
+            std::string::npos)
       << errorOf(colour, *s);
 
   EstimationJob missing = cloudJob();
@@ -145,8 +149,9 @@ TEST_F(FrameEstimation, BadInputsAreNamed) {
 
   EstimationJob small = cloudJob();
   small.frame.probabilities[0] = image("mono8", cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
-  EXPECT_NE(errorOf(small, *s).find("object 'box': probability image is 10x10 but the cloud is 320x240"),
-            std::string::npos)
+  EXPECT_NE(
+      errorOf(small, *s).find("object 'box': probability image is 10x10 but the cloud is 320x240"),
+      std::string::npos)
       << errorOf(small, *s);
 
   EstimationJob nan = cloudJob();

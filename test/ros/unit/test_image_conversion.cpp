@@ -39,18 +39,22 @@ TEST(ImageConversion, BadProbabilityImagesAreNamed) {
   const cv::Mat bgr(2, 3, CV_8UC3, cv::Scalar(1, 2, 3));
   EXPECT_NE(errorOf([&] { probabilityFromImage(image("rgb8", bgr), 10000); }).find("'rgb8'"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { probabilityFromImage(image("16SC1", cv::Mat(2, 3, CV_16SC1)), 10000); })
-                .find("'16SC1'"),
+  EXPECT_NE(errorOf([&] {
+              probabilityFromImage(image("16SC1", cv::Mat(2, 3, CV_16SC1)), 10000);
+            }).find("'16SC1'"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { probabilityFromImage(image("32FC2", cv::Mat(2, 3, CV_32FC2)), 10000); })
-                .find("2 channels"),
+  EXPECT_NE(errorOf([&] {
+              probabilityFromImage(image("32FC2", cv::Mat(2, 3, CV_32FC2)), 10000);
+            }).find("2 channels"),
             std::string::npos);
   cv::Mat above(2, 3, CV_16UC1, cv::Scalar(20000));
-  EXPECT_NE(errorOf([&] { probabilityFromImage(image("mono16", above), 10000); }).find("outside [0, 1]"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf([&] { probabilityFromImage(image("mono16", above), 10000); }).find("outside [0, 1]"),
+      std::string::npos);
   sensor_msgs::ImagePtr short_rows = image("32FC1", cv::Mat(2, 3, CV_32FC1, cv::Scalar(0)));
   short_rows->step = 8;
-  EXPECT_NE(errorOf([&] { probabilityFromImage(short_rows, 10000); }).find("step 8"), std::string::npos);
+  EXPECT_NE(errorOf([&] { probabilityFromImage(short_rows, 10000); }).find("step 8"),
+            std::string::npos);
   sensor_msgs::ImagePtr truncated = image("32FC1", cv::Mat(2, 3, CV_32FC1, cv::Scalar(0)));
   truncated->data.resize(4);
   EXPECT_NE(errorOf([&] { probabilityFromImage(truncated, 10000); }).find("4 data bytes"),
@@ -71,21 +75,24 @@ TEST(ImageConversion, MultichannelImagesSplitIntoChannels) {
   EXPECT_FLOAT_EQ(p[0].at<float>(1, 1), 0.0f);
   EXPECT_FLOAT_EQ(p[1].at<float>(1, 1), 1.0f);
   EXPECT_FLOAT_EQ(p[2].at<float>(1, 1), 0.25f);
-  EXPECT_NE(errorOf([&] { probabilitiesFromChannels(image("16UC3", merged), 4, 10000); })
-                .find("the config names 4"),
+  EXPECT_NE(errorOf([&] {
+              probabilitiesFromChannels(image("16UC3", merged), 4, 10000);
+            }).find("the config names 4"),
             std::string::npos);
   planes[2].setTo(12000);
   cv::merge(planes, merged);
-  EXPECT_NE(errorOf([&] { probabilitiesFromChannels(image("16UC3", merged), 3, 10000); })
-                .find("channel 2: "),
+  EXPECT_NE(errorOf([&] {
+              probabilitiesFromChannels(image("16UC3", merged), 3, 10000);
+            }).find("channel 2: "),
             std::string::npos);
 }
 
 TEST(ImageConversion, BoundaryMapsAreMono8) {
   cv::Mat interior(2, 3, CV_8UC1, cv::Scalar(255));
   EXPECT_EQ(boundaryFromImage(image("mono8", interior)).at<uint8_t>(1, 2), 255);
-  EXPECT_NE(errorOf([&] { boundaryFromImage(image("mono16", cv::Mat(2, 3, CV_16UC1))); })
-                .find("'mono16'"),
+  EXPECT_NE(errorOf([&] {
+              boundaryFromImage(image("mono16", cv::Mat(2, 3, CV_16UC1)));
+            }).find("'mono16'"),
             std::string::npos);
 }
 

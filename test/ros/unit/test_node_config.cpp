@@ -162,8 +162,10 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"objects: [\n", "invalid YAML"},
       {"objects: []\n", "'objects' must be a non-empty list"},
-      {box + "estimation:\n  stocs:\n    basez: 3\n", "node.yaml:6: estimation.stocs.basez: unknown key"},
-      {box + "input: {sync: {tolerance: soon}}\n", "input.sync.tolerance: expected a number, got 'soon'"},
+      {box + "estimation:\n  stocs:\n    basez: 3\n",
+       "node.yaml:6: estimation.stocs.basez: unknown key"},
+      {box + "input: {sync: {tolerance: soon}}\n",
+       "input.sync.tolerance: expected a number, got 'soon'"},
       {box + "estimation: {stocs: {bases: 2.5}}\n", "estimation.stocs.bases: expected an integer"},
       {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
       {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
@@ -197,7 +199,8 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   for (const auto& [text, expected] : cases) {
     const std::string error = loadError(text);
     EXPECT_NE(error.find(expected), std::string::npos)
-        << "config:\n" << text << "expected an error with '" << expected << "', got '" << error << "'";
+        << "config:\n"
+        << text << "expected an error with '" << expected << "', got '" << error << "'";
   }
   EXPECT_EQ(loadError(box), "");
   try {

@@ -9,7 +9,9 @@ namespace {
 
 using Sync = StampSynchronizer<int>;
 
-ros::Time at(double seconds) { return ros::Time(1000.0 + seconds); }
+ros::Time at(double seconds) {
+  return ros::Time(1000.0 + seconds);
+}
 
 size_t count(const Sync& sync, DropReason reason) {
   return sync.dropCounts()[static_cast<size_t>(reason)];

@@ -8,12 +8,14 @@ namespace {
 
 Eigen::Isometry3f somePose() {
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
-  pose.linear() = (Eigen::AngleAxisf(0.7f, Eigen::Vector3f(1, 2, 3).normalized())).toRotationMatrix();
+  pose.linear() =
+      (Eigen::AngleAxisf(0.7f, Eigen::Vector3f(1, 2, 3).normalized())).toRotationMatrix();
   pose.translation() = Eigen::Vector3f(0.1f, -0.05f, 0.8f);
   return pose;
 }
 
-Eigen::Isometry3f rotationAbout(const Eigen::Vector3f& axis, float angle, const Eigen::Vector3f& through) {
+Eigen::Isometry3f rotationAbout(const Eigen::Vector3f& axis, float angle,
+                                const Eigen::Vector3f& through) {
   Eigen::Isometry3f s = Eigen::Isometry3f::Identity();
   s.linear() = Eigen::AngleAxisf(angle, axis.normalized()).toRotationMatrix();
   s.translation() = through - s.linear() * through;
