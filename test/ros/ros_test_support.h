@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 #include <condition_variable>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -53,15 +54,5 @@ double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
 /// Translation error (metres) and rotation angle (radians) between two poses.
 double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
 double rotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
-
-/// The data folder of a test on real data, from the environment (as the launch file saw it):
-/// skips when STOCS_DATASETS is unset, fails when it names a missing folder.
-#define STOCS_ROS_REQUIRE_DATASETS(var)                                  \
-  const char* stocs_datasets_env = std::getenv("STOCS_DATASETS");        \
-  if (!stocs_datasets_env || !*stocs_datasets_env)                       \
-    GTEST_SKIP() << "STOCS_DATASETS is not set; real-data test skipped"; \
-  const std::filesystem::path var = stocs_datasets_env;                  \
-  ASSERT_TRUE(std::filesystem::is_directory(var))                        \
-      << "STOCS_DATASETS is set to '" << var.string() << "' but that folder does not exist"
 
 }  // namespace stocs_ros::test

@@ -19,6 +19,7 @@
 #include <map>
 
 #include "ros_test_support.h"
+#include "test_support.h"
 
 namespace stocs_ros::test {
 namespace {
@@ -48,7 +49,7 @@ class NodeOutputs : public ::testing::Test {
   void SetUp() override {
     std::filesystem::path dataset = g_expected.dataset;
     if (g_expected.real_data) {
-      STOCS_ROS_REQUIRE_DATASETS(root);
+      STOCS_REQUIRE_DATASETS(root);
       dataset = root / g_expected.dataset;
     }
     truth_ = groundTruthPose(dataset, g_expected.scene, g_expected.image, g_expected.obj_id);
