@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
   std::filesystem::remove_all(out);
   std::filesystem::create_directories(out);
   stocs::test::writeSyntheticBopDataset(out / "synthetic");
-  // Organized cloud and one mono16 image per object: the defaults.
+  // Organized cloud and one probability image per object: the config defaults.
   std::ofstream(out / "synthetic.yaml") << kObject;
   // Depth image + camera_info, one multi-channel image with an ignored background channel, and
   // boundary maps.
