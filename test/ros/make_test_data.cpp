@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   stocs::test::writeSyntheticBopDataset(out / "synthetic");
   // Organized cloud and one probability image per object: the config defaults.
   std::ofstream(out / "synthetic.yaml") << kObject;
+  // The same, for the bad-inputs test, which rewrites it to exercise ~reload.
+  std::ofstream(out / "reloadable.yaml") << kObject;
   // Depth image + camera_info, one multi-channel image with an ignored background channel, and
   // boundary maps.
   std::ofstream(out / "synthetic_multichannel.yaml")

@@ -7,11 +7,14 @@
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
 #include <stocs_ros/Estimate.h>
 #include <stocs_ros/ObjectPoseArray.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <mutex>
 #include <opencv2/core.hpp>
@@ -25,6 +28,7 @@ namespace stocs_ros::test {
 namespace {
 
 std::filesystem::path g_dataset;
+std::filesystem::path g_config;  ///< the node's configuration file, rewritten by the reload test
 constexpr char kService[] = "/stocs/estimate";
 
 class BadInputs : public ::testing::Test {
@@ -159,6 +163,39 @@ TEST_F(BadInputs, BadFramesGiveNoOutputAndTheNodeKeepsAnswering) {
   }
 }
 
+/// Rewrites the node's configuration file and calls ~reload.
+std_srvs::Trigger::Response reloadWith(const std::string& config) {
+  std::ofstream(g_config) << config;
+  std_srvs::Trigger srv;
+  EXPECT_TRUE(ros::service::call("/stocs/reload", srv));
+  return srv.response;
+}
+
+/// Puts a file's text back when it goes out of scope, whatever the test did to it.
+struct RestoreFile {
+  std::filesystem::path file;
+  std::string text;
+  ~RestoreFile() { std::ofstream(file) << text; }
+};
+
+TEST_F(BadInputs, ReloadAppliesAGoodFileAndKeepsTheSetupOnABadOne) {
+  std::ifstream file(g_config);
+  const RestoreFile restore{g_config, std::string(std::istreambuf_iterator<char>(file), {})};
+  const std::string& original = restore.text;
+  ASSERT_FALSE(original.empty()) << g_config;
+
+  std_srvs::Trigger::Response r = reloadWith(original + "estimation: {stocs: {bases: 0}}\n");
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("bases 0 is outside"), std::string::npos) << r.message;
+  r = reloadWith(original + "input: {uint16_scale: 100}\n");
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("restart the node"), std::string::npos) << r.message;
+  // The next test estimates a good frame with the reloaded setup.
+  r = reloadWith(original + "estimation: {stocs: {bases: 60}}\n");
+  EXPECT_TRUE(r.success) << r.message;
+  EXPECT_NE(r.message.find("reloaded 1 objects"), std::string::npos) << r.message;
+}
+
 TEST_F(BadInputs, AGoodFrameAfterwardsIsEstimated) {
   const ros::Time stamp = ros::Time::now();
   publish(good_cloud_, good_probability_, stamp, stamp);
@@ -196,6 +233,9 @@ int main(int argc, char** argv) {
   std::string dataset;
   ros::NodeHandle("~").getParam("dataset", dataset);
   stocs_ros::test::g_dataset = dataset;
+  std::string config;
+  ros::NodeHandle("~").getParam("config", config);
+  stocs_ros::test::g_config = config;
   ros::AsyncSpinner spinner(1);
   spinner.start();
   return RUN_ALL_TESTS();
