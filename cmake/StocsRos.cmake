@@ -1,0 +1,42 @@
+# ROS 1 wrappers (catkin only): messages and services, the catkin package, the stocs_ros library of
+# thin wrappers around the core, the stocs_node and scene_publisher executables and the nodelet.
+# Included before the core targets because catkin_package() must precede every target.
+set(STOCS_ROS_CATKIN_DEPENDS
+  roscpp roslib std_msgs geometry_msgs sensor_msgs visualization_msgs std_srvs
+  tf2 tf2_ros tf2_eigen cv_bridge nodelet)
+find_package(catkin REQUIRED COMPONENTS ${STOCS_ROS_CATKIN_DEPENDS} message_generation)
+find_package(yaml-cpp REQUIRED)
+
+add_message_files(DIRECTORY msg FILES ObjectPose.msg ObjectPoseArray.msg)
+add_service_files(DIRECTORY srv FILES Estimate.srv)
+generate_messages(DEPENDENCIES std_msgs geometry_msgs sensor_msgs)
+
+catkin_package(
+  INCLUDE_DIRS include
+  LIBRARIES stocs_core stocs_methods stocs_ros
+  CATKIN_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime
+)
+
+# The wrappers: every src/ros file except the executables' mains and the nodelet shell.
+file(GLOB STOCS_ROS_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*.cpp)
+list(FILTER STOCS_ROS_SOURCES EXCLUDE REGEX "(_main|_nodelet)\\.cpp$")
+add_library(stocs_ros ${STOCS_ROS_SOURCES})
+target_include_directories(stocs_ros PUBLIC ${PROJECT_SOURCE_DIR}/include ${CATKIN_DEVEL_PREFIX}/include)
+target_include_directories(stocs_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
+target_link_libraries(stocs_ros PUBLIC stocs_core ${catkin_LIBRARIES} PRIVATE yaml-cpp)
+add_dependencies(stocs_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
+
+add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)
+target_link_libraries(stocs_node PRIVATE stocs_ros)
+add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_main.cpp)
+target_link_libraries(scene_publisher PRIVATE stocs_ros)
+add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/stocs_nodelet.cpp)
+target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros)
+
+install(TARGETS stocs_ros stocs_ros_nodelet
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(TARGETS stocs_node scene_publisher RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY include/stocs_ros/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
+install(DIRECTORY launch config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

@@ -1,0 +1,56 @@
+# Tests of the ROS wrappers (catkin only): unit gtests that need no ROS master, the rostest
+# integration tests (the node, the nodelet and the scene publisher together), and the launch file
+# check. All run through `catkin_make run_tests`, as scripts/run_tests.sh does.
+if(NOT CATKIN_ENABLE_TESTING)
+  return()
+endif()
+find_package(rostest REQUIRED)
+find_package(roslaunch REQUIRED)
+roslaunch_add_file_check(launch)
+
+file(GLOB STOCS_ROS_UNIT_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/ros/unit/test_*.cpp)
+foreach(src ${STOCS_ROS_UNIT_TESTS})
+  get_filename_component(name ${src} NAME_WE)
+  stocs_add_gtest(ros_${name} ${src} ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
+  target_link_libraries(ros_${name} stocs_ros)
+endforeach()
+
+# The generated dataset and configs the integration tests play, written when the tests are built.
+set(STOCS_ROS_TEST_DATA ${CMAKE_CURRENT_BINARY_DIR}/ros_test_data)
+add_executable(stocs_ros_make_test_data EXCLUDE_FROM_ALL
+  ${PROJECT_SOURCE_DIR}/test/ros/make_test_data.cpp ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
+target_include_directories(stocs_ros_make_test_data PRIVATE ${PROJECT_SOURCE_DIR}/test)
+target_link_libraries(stocs_ros_make_test_data stocs_core GTest::gtest)
+target_compile_definitions(stocs_ros_make_test_data PRIVATE
+  STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}")
+add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
+  COMMAND stocs_ros_make_test_data ${STOCS_ROS_TEST_DATA}
+  DEPENDS stocs_ros_make_test_data
+  COMMENT "Writing the generated dataset of the ROS tests")
+add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml)
+add_dependencies(tests stocs_ros_test_data)
+
+# stocs_add_rostest_node(NAME SOURCES...): a gtest executable that rostest launch files run.
+function(stocs_add_rostest_node name)
+  catkin_add_executable_with_gtest(${name} ${ARGN} ${PROJECT_SOURCE_DIR}/test/ros/ros_test_support.cpp
+    ${PROJECT_SOURCE_DIR}/test/test_support.cpp EXCLUDE_FROM_ALL)
+  add_dependencies(tests ${name})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/test/ros)
+  target_link_libraries(${name} stocs_ros)
+  target_compile_definitions(${name} PRIVATE
+    STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
+    STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>")
+endfunction()
+stocs_add_rostest_node(test_node_outputs ${PROJECT_SOURCE_DIR}/test/ros/test_node_outputs.cpp)
+stocs_add_rostest_node(test_bad_inputs ${PROJECT_SOURCE_DIR}/test/ros/test_bad_inputs.cpp)
+stocs_add_rostest_node(test_bad_config ${PROJECT_SOURCE_DIR}/test/ros/test_bad_config.cpp)
+
+set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
+add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/nodelet_multichannel.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)

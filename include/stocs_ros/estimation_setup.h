@@ -1,0 +1,27 @@
+#pragma once
+// What estimation needs besides sensor data: the configuration and the prepared model (samples,
+// normals, PPF map) of every configured object. Immutable once loaded: a reload builds a new one
+// and swaps it in, while estimations already running keep the one they started with.
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "stocs/model_cache.h"
+#include "stocs_ros/node_config.h"
+
+namespace stocs_ros {
+
+struct EstimationSetup {
+  NodeConfig config;
+  std::vector<stocs::PreparedModel> models;  ///< in config.objects order
+
+  /// Reads `config_file` and builds or loads from the cache every model; `log` gets one line per
+  /// model. Throws stocs::InputError for a bad config or model file.
+  static std::shared_ptr<const EstimationSetup> load(
+      const std::filesystem::path& config_file, const std::function<void(const std::string&)>& log);
+};
+
+}  // namespace stocs_ros

@@ -1,0 +1,52 @@
+#pragma once
+// One estimation on one input frame: converts the frame's messages (see cloud_conversion.h and
+// image_conversion.h) and runs the core's estimateObject for each requested object.
+
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/Header.h>
+
+#include <optional>
+#include <vector>
+
+#include "stocs/pipeline.h"
+#include "stocs_ros/estimation_setup.h"
+
+namespace stocs_ros {
+
+/// One input frame as received: messages are shared, never copied.
+struct FrameMessages {
+  sensor_msgs::PointCloud2ConstPtr cloud;       ///< input.source: cloud
+  sensor_msgs::ImageConstPtr depth;             ///< input.source: depth ...
+  sensor_msgs::CameraInfoConstPtr camera_info;  ///< ... with its camera_info
+  /// Per configured object (index as in config.objects); null where the frame has none.
+  std::vector<sensor_msgs::ImageConstPtr> probabilities;
+  sensor_msgs::ImageConstPtr multichannel;  ///< input.probability: multichannel
+  sensor_msgs::ImageConstPtr boundary;      ///< optional instance boundary map
+
+  /// The header of the cloud or depth image: the outputs' frame and stamp.
+  const std_msgs::Header& header() const;
+};
+
+struct EstimationJob {
+  FrameMessages frame;
+  std::vector<size_t> objects;        ///< indices into config.objects
+  std::optional<double> time_budget;  ///< seconds per object, instead of the configured one
+};
+
+struct ObjectOutcome {
+  size_t object;  ///< index into config.objects
+  stocs::ObjectEstimate estimate;
+};
+
+struct FrameResult {
+  std_msgs::Header header;
+  std::vector<ObjectOutcome> objects;  ///< one per requested object, found or not
+};
+
+/// Throws stocs::InputError naming the input at fault (cloud, an object's probability image, the
+/// boundary map) for bad encodings, sizes or parameters.
+FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup);
+
+}  // namespace stocs_ros

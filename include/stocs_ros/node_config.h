@@ -1,0 +1,65 @@
+#pragma once
+// The StoCS node's configuration file (YAML): the objects (model, unit scale, symmetries, rviz
+// mesh), the inputs and their synchronization, the outputs, the model cache, and every estimation
+// parameter of the core (stocs::PipelineParams, keys named after its fields). config/default.yaml
+// lists every key with its default.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "stocs/pipeline.h"
+#include "stocs_ros/stamp_synchronizer.h"
+#include "stocs_ros/symmetric_pose.h"
+
+namespace stocs_ros {
+
+struct ObjectConfig {
+  std::string name;             ///< topic and TF name component
+  int id = 0;                   ///< numeric id in the outputs (default: position in the list + 1)
+  std::filesystem::path model;  ///< model file (PLY), resolved
+  float unit_scale = 0.001f;    ///< model units to metres
+  std::string mesh_url;         ///< rviz mesh_resource; empty: markers show the model samples
+  float mesh_scale = 0.001f;    ///< mesh units to metres (default: unit_scale)
+  ObjectSymmetries symmetries;  ///< in metres
+};
+
+enum class DepthSource { kCloud, kDepthImage };
+enum class ProbabilitySource { kPerObject, kMultichannel };
+
+struct InputConfig {
+  DepthSource depth = DepthSource::kCloud;
+  ProbabilitySource probability = ProbabilitySource::kPerObject;
+  /// kMultichannel: the object name of each channel, in order; "-" marks a channel to ignore.
+  std::vector<std::string> channels;
+  double uint16_scale = 10000;  ///< mono16 probability = value / uint16_scale
+  bool boundary = false;        ///< subscribe ~boundary for instance regions
+  SyncParams sync;
+};
+
+struct OutputConfig {
+  std::string frame_prefix;  ///< TF child frame = frame_prefix + object name
+  bool tf = true;
+  bool markers = true;
+  bool estimate_on_frames = true;  ///< false: estimate only on ~estimate calls
+};
+
+struct NodeConfig {
+  std::filesystem::path file;  ///< the file it was read from
+  std::vector<ObjectConfig> objects;
+  InputConfig input;
+  OutputConfig output;
+  std::filesystem::path model_cache;  ///< folder; empty: no cache
+  stocs::PipelineParams estimation;
+
+  /// Index of the object called `name`, or -1.
+  int objectIndex(const std::string& name) const;
+  /// The configured object names, comma-separated.
+  std::string objectNames() const;
+};
+
+/// Reads and checks a configuration file. Throws stocs::InputError naming the file, the key and
+/// the problem: unreadable file, bad YAML, unknown key, wrong type, value out of range.
+NodeConfig loadNodeConfig(const std::filesystem::path& file);
+
+}  // namespace stocs_ros

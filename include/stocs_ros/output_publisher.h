@@ -1,0 +1,42 @@
+#pragma once
+// Publishes a frame's result: TF from the cloud's frame to <frame_prefix><object>, ~poses
+// (PoseArray), ~objects (ObjectPoseArray) and ~markers (MarkerArray), as the config's output
+// section selects. A result older than one already published (a service call on explicit, older
+// inputs) is not published: consumers see stamps that never go back. Called from one thread at a
+// time (the estimation worker).
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "stocs_ros/estimation_setup.h"
+#include "stocs_ros/frame_estimation.h"
+
+namespace stocs_ros {
+
+class OutputPublisher {
+ public:
+  /// Advertises ~poses, ~objects and ~markers on `pnh`.
+  explicit OutputPublisher(ros::NodeHandle& pnh);
+
+  void publish(const FrameResult& result, const EstimationSetup& setup);
+
+ private:
+  void publishTransforms(const FrameResult& result, const EstimationSetup& setup);
+
+  ros::Publisher poses_;
+  ros::Publisher objects_;
+  ros::Publisher markers_;
+  tf2_ros::TransformBroadcaster tf_;
+  /// Last stamp sent per child frame: tf2 warns (TF_REPEATED_DATA) about a transform sent twice
+  /// for one stamp, as happens when ~estimate runs again on a frame already estimated.
+  std::map<std::string, ros::Time> tf_stamps_;
+  std::set<std::string> shown_markers_;
+  std::optional<ros::Time> newest_stamp_;
+};
+
+}  // namespace stocs_ros

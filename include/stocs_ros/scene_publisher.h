@@ -1,0 +1,57 @@
+#pragma once
+// Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
+// with camera_info, the colour image, per-object probability images (or one multi-channel image, as
+// the estimator's config says), the boundary map, and the ground truth as TF frames gt_<object>.
+// Every message of one frame carries the same stamp (the time it is published).
+
+#include <ros/ros.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "stocs/bop_dataset.h"
+#include "stocs_ros/bop_frame.h"
+#include "stocs_ros/node_config.h"
+
+namespace stocs_ros {
+
+class ScenePublisher {
+ public:
+  /// Reads the private parameters (see the README) and starts the timer. Throws stocs::InputError
+  /// for a bad parameter, dataset or config.
+  explicit ScenePublisher(ros::NodeHandle pnh);
+
+ private:
+  struct FrameRef {
+    int scene;
+    int image;
+  };
+
+  void onTimer(const ros::TimerEvent&);
+  void publish(const FrameRef& ref, const BopFrame& frame);
+  void publishProbabilities(const BopFrame& frame, const std_msgs::Header& header);
+  void publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header);
+  std::string objectName(int obj_id) const;
+
+  ros::NodeHandle pnh_;
+  stocs::BopDataset dataset_;
+  NodeConfig config_;  ///< the estimator's config: object names and ids, probability form
+  std::vector<int> object_ids_;
+  std::string frame_id_;
+  std::string probability_encoding_;
+  bool publish_boundary_ = true;
+  bool loop_ = true;
+  std::vector<FrameRef> frames_;
+  size_t next_ = 0;
+  std::map<int, std::map<int, stocs::BopFrameCamera>> cameras_;  // by scene, image
+  std::map<int, std::map<int, std::vector<stocs::BopGtInstance>>> ground_truth_;
+
+  ros::Publisher cloud_, depth_, camera_info_, rgb_, multichannel_, boundary_;
+  std::vector<ros::Publisher> probabilities_;  // per object, input.probability: per_object
+  tf2_ros::TransformBroadcaster tf_;
+  ros::Timer timer_;
+};
+
+}  // namespace stocs_ros

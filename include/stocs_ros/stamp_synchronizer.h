@@ -1,0 +1,168 @@
+#pragma once
+// Matches messages of N inputs by header stamp: one frame is the newest message of input 0 (the
+// reference, the cloud) together with, for every other input, the message nearest to its stamp
+// within a tolerance.
+//
+// Written here rather than taken from message_filters because its synchronizers are templates
+// over at most 9 fixed message types, while the node has one probability input per configured
+// object (any number), and because every message dropped here must be counted by reason for the
+// node's throttled warnings. Not thread-safe: the caller serialises add().
+
+#include <ros/time.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace stocs_ros {
+
+struct SyncParams {
+  double tolerance = 0.01;  ///< seconds between the reference stamp and the stamps it is matched to
+  int queue_size = 10;      ///< messages kept per input while waiting for a match
+  /// Seconds behind the newest stamp seen before a message is dropped; 0: never.
+  double max_age = 2.0;
+
+  /// Throws stocs::InputError naming the first value out of range.
+  void validate() const;
+};
+
+enum class DropReason {
+  kQueueFull,  ///< the input's queue overflowed; its oldest message went
+  kUnmatched,  ///< a newer frame was matched first
+  kLate,       ///< arrived with a stamp at or before the last matched frame
+  kTooOld,     ///< older than max_age behind the newest stamp seen
+};
+constexpr size_t kDropReasonCount = 4;
+
+const char* toString(DropReason reason);
+
+struct DroppedMessage {
+  size_t input;
+  ros::Time stamp;
+  DropReason reason;
+};
+
+/// Drop counts by reason, as "2 queue full, 1 late" (reasons with zero counts left out).
+std::string describeDropCounts(const std::array<uint64_t, kDropReasonCount>& counts);
+
+template <class Message>
+class StampSynchronizer {
+ public:
+  struct Match {
+    ros::Time stamp;                ///< the reference message's stamp
+    std::vector<Message> messages;  ///< one per input, in input order
+  };
+
+  StampSynchronizer(size_t inputs, const SyncParams& params) : params_(params), queues_(inputs) {}
+
+  /// Adds a message of `input` and returns a complete frame when one can now be formed. Messages
+  /// dropped on the way are appended to `dropped` and counted.
+  std::optional<Match> add(size_t input, const ros::Time& stamp, Message message,
+                           std::vector<DroppedMessage>& dropped) {
+    if (last_match_ && stamp <= *last_match_) {
+      drop(input, stamp, DropReason::kLate, dropped);
+      return std::nullopt;
+    }
+    if (!newest_ || stamp > *newest_) newest_ = stamp;
+    // ros::Time cannot be negative: no age limit applies in the first max_age seconds of a clock.
+    if (params_.max_age > 0 && newest_->toSec() > params_.max_age) {
+      const ros::Time limit = *newest_ - ros::Duration(params_.max_age);
+      dropOlderThan(limit, dropped);
+      if (stamp < limit) {
+        drop(input, stamp, DropReason::kTooOld, dropped);
+        return std::nullopt;
+      }
+    }
+    std::deque<Entry>& queue = queues_[input];
+    const auto at =
+        std::upper_bound(queue.begin(), queue.end(), stamp,
+                         [](const ros::Time& s, const Entry& e) { return s < e.stamp; });
+    queue.insert(at, Entry{stamp, std::move(message)});
+    if (static_cast<int>(queue.size()) > params_.queue_size) {
+      drop(input, queue.front().stamp, DropReason::kQueueFull, dropped);
+      queue.pop_front();
+    }
+    return tryMatch(dropped);
+  }
+
+  const std::array<uint64_t, kDropReasonCount>& dropCounts() const { return counts_; }
+  size_t inputs() const { return queues_.size(); }
+
+ private:
+  struct Entry {
+    ros::Time stamp;
+    Message message;
+  };
+
+  void drop(size_t input, const ros::Time& stamp, DropReason reason,
+            std::vector<DroppedMessage>& dropped) {
+    ++counts_[static_cast<size_t>(reason)];
+    dropped.push_back({input, stamp, reason});
+  }
+
+  void dropOlderThan(const ros::Time& limit, std::vector<DroppedMessage>& dropped) {
+    for (size_t i = 0; i < queues_.size(); ++i) {
+      while (!queues_[i].empty() && queues_[i].front().stamp < limit) {
+        drop(i, queues_[i].front().stamp, DropReason::kTooOld, dropped);
+        queues_[i].pop_front();
+      }
+    }
+  }
+
+  /// Index of the message of `input` nearest to `stamp` within the tolerance, or -1.
+  int nearest(size_t input, const ros::Time& stamp) const {
+    int best = -1;
+    double best_gap = params_.tolerance;
+    const std::deque<Entry>& queue = queues_[input];
+    for (size_t k = 0; k < queue.size(); ++k) {
+      const double gap = std::abs((queue[k].stamp - stamp).toSec());
+      if (gap <= best_gap) {
+        best = static_cast<int>(k);
+        best_gap = gap;
+      }
+    }
+    return best;
+  }
+
+  std::optional<Match> tryMatch(std::vector<DroppedMessage>& dropped) {
+    const std::deque<Entry>& references = queues_[0];
+    std::vector<int> chosen(queues_.size());
+    // Newest reference first: a live consumer wants the latest complete frame.
+    for (int r = static_cast<int>(references.size()) - 1; r >= 0; --r) {
+      chosen[0] = r;
+      bool complete = true;
+      for (size_t i = 1; i < queues_.size() && complete; ++i) {
+        chosen[i] = nearest(i, references[r].stamp);
+        complete = chosen[i] >= 0;
+      }
+      if (complete) return take(chosen, dropped);
+    }
+    return std::nullopt;
+  }
+
+  /// Moves the chosen messages out and drops every message older than them.
+  Match take(const std::vector<int>& chosen, std::vector<DroppedMessage>& dropped) {
+    Match match;
+    match.stamp = queues_[0][chosen[0]].stamp;
+    for (size_t i = 0; i < queues_.size(); ++i) {
+      std::deque<Entry>& queue = queues_[i];
+      for (int k = 0; k < chosen[i]; ++k) drop(i, queue[k].stamp, DropReason::kUnmatched, dropped);
+      match.messages.push_back(std::move(queue[chosen[i]].message));
+      queue.erase(queue.begin(), queue.begin() + chosen[i] + 1);
+    }
+    last_match_ = match.stamp;
+    return match;
+  }
+
+  SyncParams params_;
+  std::vector<std::deque<Entry>> queues_;  // each sorted by stamp, oldest first
+  std::optional<ros::Time> newest_;
+  std::optional<ros::Time> last_match_;
+  std::array<uint64_t, kDropReasonCount> counts_{};
+};
+
+}  // namespace stocs_ros

@@ -1,0 +1,42 @@
+#include "stocs_ros/output_publisher.h"
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include "stocs_ros/result_messages.h"
+
+namespace stocs_ros {
+
+OutputPublisher::OutputPublisher(ros::NodeHandle& pnh)
+    : poses_(pnh.advertise<geometry_msgs::PoseArray>("poses", 1)),
+      objects_(pnh.advertise<ObjectPoseArray>("objects", 1)),
+      markers_(pnh.advertise<visualization_msgs::MarkerArray>("markers", 1)) {}
+
+void OutputPublisher::publish(const FrameResult& result, const EstimationSetup& setup) {
+  if (newest_stamp_ && result.header.stamp < *newest_stamp_) return;
+  newest_stamp_ = result.header.stamp;
+  const OutputConfig& output = setup.config.output;
+  if (output.tf) publishTransforms(result, setup);
+  poses_.publish(toPoseArray(result));
+  objects_.publish(toObjectPoseArray(result, setup));
+  if (output.markers) markers_.publish(toMarkers(result, setup, shown_markers_));
+}
+
+void OutputPublisher::publishTransforms(const FrameResult& result, const EstimationSetup& setup) {
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const ObjectOutcome& o : result.objects) {
+    if (!o.estimate.estimate.found) continue;
+    const std::string child =
+        setup.config.output.frame_prefix + setup.config.objects[o.object].name;
+    const auto last = tf_stamps_.find(child);
+    if (last != tf_stamps_.end() && result.header.stamp <= last->second) continue;
+    geometry_msgs::TransformStamped t =
+        tf2::eigenToTransform(Eigen::Isometry3d(o.estimate.estimate.pose.cast<double>()));
+    t.header = result.header;
+    t.child_frame_id = child;
+    transforms.push_back(t);
+    tf_stamps_[child] = result.header.stamp;
+  }
+  if (!transforms.empty()) tf_.sendTransform(transforms);
+}
+
+}  // namespace stocs_ros

@@ -1,0 +1,219 @@
+#include "stocs_ros/scene_publisher.h"
+
+#include <cv_bridge/cv_bridge.h>
+#include <fmt/format.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <opencv2/core.hpp>
+
+#include "stocs/error.h"
+#include "stocs_ros/cloud_conversion.h"
+
+namespace stocs_ros {
+using stocs::InputError;
+
+namespace {
+
+std::string requiredParam(const ros::NodeHandle& pnh, const std::string& name) {
+  std::string value;
+  if (!pnh.getParam(name, value) || value.empty()) {
+    throw InputError(fmt::format("parameter {}/{} is not set", pnh.getNamespace(), name));
+  }
+  return value;
+}
+
+/// A list-of-integers parameter (empty when unset); roscpp would silently ignore a value of another
+/// type, such as `_scenes:=4` given on the command line.
+std::vector<int> intListParam(const ros::NodeHandle& pnh, const std::string& name) {
+  std::vector<int> values;
+  if (pnh.hasParam(name) && !pnh.getParam(name, values)) {
+    throw InputError(fmt::format("parameter {}/{} must be a list of integers, such as [0, 3]",
+                                 pnh.getNamespace(), name));
+  }
+  return values;
+}
+
+/// OpenCV depth and the ROS encoding of a probability image with `channels` channels.
+std::pair<int, std::string> probabilityFormat(const std::string& encoding, size_t channels) {
+  const std::string n = std::to_string(channels);
+  if (encoding == "mono16") return {CV_16U, channels == 1 ? "mono16" : "16UC" + n};
+  if (encoding == "mono8") return {CV_8U, channels == 1 ? "mono8" : "8UC" + n};
+  return {CV_32F, "32FC" + n};
+}
+
+sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
+                                   const std_msgs::Header& header) {
+  sensor_msgs::CameraInfo info;
+  info.header = header;
+  info.width = k.width;
+  info.height = k.height;
+  info.distortion_model = "plumb_bob";
+  info.D.assign(5, 0.0);
+  info.K = {k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1};
+  info.R = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  info.P = {k.fx, 0, k.cx, 0, 0, k.fy, k.cy, 0, 0, 0, 1, 0};
+  return info;
+}
+
+}  // namespace
+
+ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
+    : pnh_(pnh),
+      dataset_(requiredParam(pnh, "dataset"), pnh.param<std::string>("split", "test")),
+      config_(loadNodeConfig(requiredParam(pnh, "config"))),
+      frame_id_(pnh.param<std::string>("frame_id", "camera_optical_frame")),
+      probability_encoding_(pnh.param<std::string>("probability_encoding", "mono16")),
+      publish_boundary_(pnh.param("boundary", true)),
+      loop_(pnh.param("loop", true)) {
+  const double rate = pnh.param("rate", 1.0);
+  if (!(rate > 0 && rate <= 100)) {
+    throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
+  }
+  if (probability_encoding_ != "mono16" && probability_encoding_ != "mono8" &&
+      probability_encoding_ != "32FC1") {
+    throw InputError(
+        fmt::format("parameter probability_encoding '{}' must be mono16, mono8 or 32FC1",
+                    probability_encoding_));
+  }
+  std::vector<int> scenes = intListParam(pnh, "scenes");
+  const std::vector<int> images = intListParam(pnh, "images");
+  if (scenes.empty()) scenes = dataset_.sceneIds();
+  for (int scene : scenes) {
+    if (!std::filesystem::is_directory(dataset_.sceneDir(scene))) {
+      throw InputError(fmt::format("{}: scene {} does not exist", dataset_.root().string(), scene));
+    }
+    cameras_[scene] = dataset_.sceneCameras(scene);
+    if (std::filesystem::exists(dataset_.sceneDir(scene) / "scene_gt.json")) {
+      ground_truth_[scene] = dataset_.sceneGroundTruth(scene);
+    }
+    for (const auto& entry : cameras_[scene]) {
+      if (images.empty() || std::count(images.begin(), images.end(), entry.first)) {
+        frames_.push_back({scene, entry.first});
+      }
+    }
+  }
+  if (frames_.empty()) {
+    throw InputError(fmt::format("{}: no frame matches the selected scenes and images",
+                                 dataset_.root().string()));
+  }
+  for (const ObjectConfig& o : config_.objects) object_ids_.push_back(o.id);
+
+  cloud_ = pnh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
+  depth_ = pnh_.advertise<sensor_msgs::Image>("depth", 2);
+  camera_info_ = pnh_.advertise<sensor_msgs::CameraInfo>("camera_info", 2);
+  rgb_ = pnh_.advertise<sensor_msgs::Image>("rgb", 2);
+  boundary_ = pnh_.advertise<sensor_msgs::Image>("boundary", 2);
+  if (config_.input.probability == ProbabilitySource::kMultichannel) {
+    multichannel_ = pnh_.advertise<sensor_msgs::Image>("probability", 2);
+  } else {
+    // In a child handle, so that remapping ~probability moves every per-object topic.
+    ros::NodeHandle probability_nh(pnh_, "probability");
+    for (const ObjectConfig& o : config_.objects) {
+      probabilities_.push_back(probability_nh.advertise<sensor_msgs::Image>(o.name, 2));
+    }
+  }
+  timer_ = pnh_.createTimer(ros::Duration(1.0 / rate), &ScenePublisher::onTimer, this);
+  ROS_INFO("scene_publisher: %zu frames of %s at %.2f Hz%s", frames_.size(),
+           dataset_.root().c_str(), rate, loop_ ? ", looping" : "");
+}
+
+void ScenePublisher::onTimer(const ros::TimerEvent&) {
+  if (next_ == frames_.size()) {
+    if (!loop_) {
+      timer_.stop();
+      ROS_INFO("scene_publisher: all %zu frames published", frames_.size());
+      return;
+    }
+    next_ = 0;
+  }
+  const FrameRef ref = frames_[next_++];
+  try {
+    publish(ref, loadBopFrame(dataset_, ref.scene, ref.image, cameras_[ref.scene][ref.image],
+                              object_ids_));
+  } catch (const InputError& e) {
+    ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d skipped: %s", ref.scene, ref.image,
+                       e.what());
+  }
+}
+
+void ScenePublisher::publish(const FrameRef& ref, const BopFrame& frame) {
+  std_msgs::Header header;
+  header.stamp = ros::Time::now();
+  header.frame_id = frame_id_;
+  auto cloud = boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(frame.cloud, frame.bgr));
+  cloud->header = header;
+  cloud_.publish(cloud);
+  depth_.publish(cv_bridge::CvImage(header, "32FC1", frame.depth).toImageMsg());
+  camera_info_.publish(cameraInfo(frame.camera, header));
+  if (!frame.bgr.empty()) rgb_.publish(cv_bridge::CvImage(header, "bgr8", frame.bgr).toImageMsg());
+  publishProbabilities(frame, header);
+  if (publish_boundary_) {
+    // A frame without a map gets an all-interior one, so that a node waiting for boundaries still
+    // receives complete frames.
+    const cv::Mat boundary = frame.boundary.empty()
+                                 ? cv::Mat(frame.depth.size(), CV_8UC1, cv::Scalar(255))
+                                 : frame.boundary;
+    boundary_.publish(cv_bridge::CvImage(header, "mono8", boundary).toImageMsg());
+  }
+  publishGroundTruth(ref, header);
+}
+
+void ScenePublisher::publishProbabilities(const BopFrame& frame, const std_msgs::Header& header) {
+  const bool multichannel = config_.input.probability == ProbabilitySource::kMultichannel;
+  const auto [depth, encoding] =
+      probabilityFormat(probability_encoding_, multichannel ? config_.input.channels.size() : 1);
+  const double scale = depth == CV_16U ? config_.input.uint16_scale : depth == CV_8U ? 255.0 : 1.0;
+  std::vector<cv::Mat> encoded;
+  for (const cv::Mat& p : frame.probabilities) {
+    cv::Mat e;
+    p.convertTo(e, depth, scale);  // rounds: a mono16 map from a BOP file comes back exactly
+    encoded.push_back(e);
+  }
+  if (!multichannel) {
+    for (size_t i = 0; i < encoded.size(); ++i) {
+      probabilities_[i].publish(cv_bridge::CvImage(header, encoding, encoded[i]).toImageMsg());
+    }
+    return;
+  }
+  std::vector<cv::Mat> channels;
+  for (const std::string& name : config_.input.channels) {
+    const int i = config_.objectIndex(name);
+    channels.push_back(i >= 0 ? encoded[i] : cv::Mat::zeros(frame.depth.size(), depth));
+  }
+  cv::Mat merged;
+  cv::merge(channels, merged);
+  multichannel_.publish(cv_bridge::CvImage(header, encoding, merged).toImageMsg());
+}
+
+void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header) {
+  const auto scene = ground_truth_.find(ref.scene);
+  if (scene == ground_truth_.end()) return;
+  const auto image = scene->second.find(ref.image);
+  if (image == scene->second.end()) return;
+  std::map<std::string, int> instances;
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  for (const stocs::BopGtInstance& g : image->second) {
+    const std::string name = objectName(g.obj_id);
+    const int k = instances[name]++;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::Quaterniond(g.R).normalized().toRotationMatrix();
+    pose.translation() = g.t_mm / 1000.0;
+    geometry_msgs::TransformStamped t = tf2::eigenToTransform(pose);
+    t.header = header;
+    t.child_frame_id = "gt_" + name + (k > 0 ? "_" + std::to_string(k) : "");
+    transforms.push_back(t);
+  }
+  tf_.sendTransform(transforms);
+}
+
+std::string ScenePublisher::objectName(int obj_id) const {
+  for (const ObjectConfig& o : config_.objects) {
+    if (o.id == obj_id) return o.name;
+  }
+  return "obj_" + std::to_string(obj_id);
+}
+
+}  // namespace stocs_ros

@@ -1,0 +1,310 @@
+#include "stocs_ros/stocs_node.h"
+
+#include <fmt/format.h>
+
+#include <boost/make_shared.hpp>
+
+#include "stocs/error.h"
+#include "stocs_ros/result_messages.h"
+
+namespace stocs_ros {
+using stocs::InputError;
+
+namespace {
+
+constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of warning
+
+std::string requireConfigParameter(const ros::NodeHandle& pnh) {
+  std::string file;
+  if (!pnh.getParam("config", file) || file.empty()) {
+    throw InputError(
+        fmt::format("parameter {}/config (the configuration file) is not set", pnh.getNamespace()));
+  }
+  return file;
+}
+
+/// Reload can change models and estimation parameters, not what the node subscribes to.
+void checkSameInputs(const NodeConfig& now, const NodeConfig& fresh) {
+  std::vector<std::string> names_now, names_fresh;
+  for (const ObjectConfig& o : now.objects) names_now.push_back(o.name);
+  for (const ObjectConfig& o : fresh.objects) names_fresh.push_back(o.name);
+  const InputConfig &a = now.input, &b = fresh.input;
+  if (names_now != names_fresh || a.depth != b.depth || a.probability != b.probability ||
+      a.channels != b.channels || a.boundary != b.boundary || a.uint16_scale != b.uint16_scale ||
+      a.sync.tolerance != b.sync.tolerance || a.sync.queue_size != b.sync.queue_size ||
+      a.sync.max_age != b.sync.max_age) {
+    throw InputError(fmt::format(
+        "{}: the object names or the input section changed; restart the node to apply that",
+        fresh.file.string()));
+  }
+}
+
+std::string describeOutcome(const FrameResult& result, const NodeConfig& config) {
+  std::string missing;
+  size_t found = 0;
+  for (const ObjectOutcome& o : result.objects) {
+    if (o.estimate.estimate.found) {
+      ++found;
+    } else {
+      missing += (missing.empty() ? "" : ", ") + config.objects[o.object].name;
+    }
+  }
+  return fmt::format("{} of {} objects found{}", found, result.objects.size(),
+                     missing.empty() ? "" : "; no pose for " + missing);
+}
+
+}  // namespace
+
+StocsNode::StocsNode(ros::NodeHandle pnh)
+    : pnh_(pnh),
+      config_file_(requireConfigParameter(pnh)),
+      setup_(EstimationSetup::load(config_file_,
+                                   [](const std::string& line) { ROS_INFO("%s", line.c_str()); })),
+      output_(pnh_),
+      service_spinner_(1, &service_queue_) {
+  const NodeConfig& config = setup_->config;
+  worker_ = std::make_unique<JobWorker<QueuedJob, FrameResult>>(
+      [this](const QueuedJob& q) { return process(q); },
+      [this](std::exception_ptr e) { onBackgroundError(e); });
+  subscribeInputs();
+
+  ros::NodeHandle service_nh(pnh_);
+  service_nh.setCallbackQueue(&service_queue_);
+  estimate_service_ = service_nh.advertiseService("estimate", &StocsNode::onEstimate, this);
+  reload_service_ = service_nh.advertiseService("reload", &StocsNode::onReload, this);
+  service_spinner_.start();
+  ROS_INFO("stocs: %zu objects (%s) from %s; waiting for %zu synchronized inputs",
+           config.objects.size(), config.objectNames().c_str(), config_file_.c_str(),
+           inputs_.size());
+}
+
+StocsNode::~StocsNode() {
+  // Stop every source of new jobs before the worker goes.
+  for (ros::Subscriber& s : subscribers_) s.shutdown();
+  service_spinner_.stop();
+  estimate_service_.shutdown();
+  reload_service_.shutdown();
+}
+
+std::shared_ptr<const EstimationSetup> StocsNode::setup() const {
+  std::lock_guard<std::mutex> lock(setup_mutex_);
+  return setup_;
+}
+
+void StocsNode::subscribeInputs() {
+  const NodeConfig& config = setup_->config;
+  // Per-object topics are resolved in a child handle so that remapping ~probability moves them all:
+  // roscpp remaps node handle namespaces, not name prefixes.
+  const ros::NodeHandle probability_nh(pnh_, "probability");
+  const auto add = [&](const std::string& topic, InputKind kind, size_t object = 0) {
+    inputs_.push_back({kind, object,
+                       kind == InputKind::kProbability ? probability_nh.resolveName(topic)
+                                                       : pnh_.resolveName(topic)});
+  };
+  if (config.input.depth == DepthSource::kCloud) {
+    add("cloud", InputKind::kCloud);
+  } else {
+    add("depth", InputKind::kDepth);
+    add("camera_info", InputKind::kCameraInfo);
+  }
+  if (config.input.probability == ProbabilitySource::kMultichannel) {
+    add("probability", InputKind::kMultichannel);
+  } else {
+    for (size_t i = 0; i < config.objects.size(); ++i) {
+      add(config.objects[i].name, InputKind::kProbability, i);
+    }
+  }
+  if (config.input.boundary) add("boundary", InputKind::kBoundary);
+  // Before the first subscription: with a multi-threaded nodelet manager, callbacks may start at
+  // once.
+  sync_ = std::make_unique<StampSynchronizer<InputMessage>>(inputs_.size(), config.input.sync);
+
+  const int queue = config.input.sync.queue_size;
+  for (size_t i = 0; i < inputs_.size(); ++i) {
+    switch (inputs_[i].kind) {
+      case InputKind::kCloud:
+        subscribe<sensor_msgs::PointCloud2>(i, queue);
+        break;
+      case InputKind::kCameraInfo:
+        subscribe<sensor_msgs::CameraInfo>(i, queue);
+        break;
+      default:
+        subscribe<sensor_msgs::Image>(i, queue);
+    }
+  }
+}
+
+template <class Message>
+void StocsNode::subscribe(size_t input, int queue_size) {
+  const boost::function<void(const boost::shared_ptr<const Message>&)> callback =
+      [this, input](const boost::shared_ptr<const Message>& msg) {
+        onMessage(input, msg->header.stamp, msg);
+      };
+  subscribers_.push_back(pnh_.subscribe<Message>(inputs_[input].topic, queue_size, callback));
+}
+
+void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage message) {
+  const std::shared_ptr<const EstimationSetup> current = setup();
+  std::vector<DroppedMessage> dropped;
+  std::optional<EstimationJob> job;
+  {
+    std::lock_guard<std::mutex> lock(sync_mutex_);
+    auto match = sync_->add(input, stamp, std::move(message), dropped);
+    if (!dropped.empty()) {
+      const DroppedMessage& d = dropped.back();
+      ROS_WARN_THROTTLE(kWarnPeriod,
+                        "stocs: dropped a message of %s (stamp %.3f): %s; dropped so far: %s",
+                        inputs_[d.input].topic.c_str(), d.stamp.toSec(), toString(d.reason),
+                        describeDropCounts(sync_->dropCounts()).c_str());
+    }
+    if (!match) return;
+    latest_frame_ = toFrame(match->messages, current->config.objects.size());
+    if (!current->config.output.estimate_on_frames) return;
+    job = EstimationJob{*latest_frame_, {}, std::nullopt};
+  }
+  for (size_t i = 0; i < current->config.objects.size(); ++i) job->objects.push_back(i);
+  if (worker_->offer({std::move(*job), current})) {
+    ++frames_skipped_;
+    ROS_WARN_THROTTLE(kWarnPeriod,
+                      "stocs: estimation is slower than the input; %lu frames skipped so far",
+                      static_cast<unsigned long>(frames_skipped_.load()));
+  }
+}
+
+FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t objects) const {
+  FrameMessages frame;
+  frame.probabilities.resize(objects);
+  for (size_t i = 0; i < inputs_.size(); ++i) {
+    InputMessage& m = messages[i];
+    switch (inputs_[i].kind) {
+      case InputKind::kCloud:
+        frame.cloud = std::get<sensor_msgs::PointCloud2ConstPtr>(m);
+        break;
+      case InputKind::kDepth:
+        frame.depth = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case InputKind::kCameraInfo:
+        frame.camera_info = std::get<sensor_msgs::CameraInfoConstPtr>(m);
+        break;
+      case InputKind::kProbability:
+        frame.probabilities[inputs_[i].object] = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case InputKind::kMultichannel:
+        frame.multichannel = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case InputKind::kBoundary:
+        frame.boundary = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+    }
+  }
+  return frame;
+}
+
+FrameResult StocsNode::process(const QueuedJob& queued) {
+  FrameResult result = estimateFrame(queued.job, *queued.setup);
+  for (ObjectOutcome& o : result.objects) {
+    stocs::PoseEstimate& e = o.estimate.estimate;
+    if (e.found) {
+      e.pose = tracker_.track(o.object, e.pose, queued.setup->config.objects[o.object].symmetries);
+    }
+  }
+  output_.publish(result, *queued.setup);
+  return result;
+}
+
+void StocsNode::onBackgroundError(std::exception_ptr error) {
+  ++frames_rejected_;
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: frame rejected: %s (%lu frames rejected so far)",
+                       e.what(), static_cast<unsigned long>(frames_rejected_.load()));
+  }
+}
+
+EstimationJob StocsNode::serviceJob(Estimate::Request& request, const EstimationSetup& setup) {
+  const NodeConfig& config = setup.config;
+  EstimationJob job;
+  for (const std::string& name : request.objects) {
+    const int i = config.objectIndex(name);
+    if (i < 0) {
+      throw InputError(
+          fmt::format("unknown object '{}'; configured objects: {}", name, config.objectNames()));
+    }
+    job.objects.push_back(static_cast<size_t>(i));
+  }
+  if (job.objects.empty()) {
+    for (size_t i = 0; i < config.objects.size(); ++i) job.objects.push_back(i);
+  }
+  if (!(request.time_budget >= 0)) {
+    throw InputError(fmt::format("time_budget {} s is negative", request.time_budget));
+  }
+  if (request.time_budget > 0) job.time_budget = request.time_budget;
+
+  const bool explicit_cloud = !request.cloud.data.empty() || request.cloud.width > 0;
+  if (!explicit_cloud) {
+    if (!request.probabilities.empty()) {
+      throw InputError("probabilities were given without a cloud");
+    }
+    std::lock_guard<std::mutex> lock(sync_mutex_);
+    if (!latest_frame_) {
+      throw InputError(
+          "no synchronized input frame yet; publish the inputs or pass a cloud and probabilities");
+    }
+    job.frame = *latest_frame_;
+    return job;
+  }
+  if (request.probabilities.size() != job.objects.size()) {
+    throw InputError(
+        fmt::format("{} probability images for {} objects; give one per object, in "
+                    "the order of `objects`",
+                    request.probabilities.size(), job.objects.size()));
+  }
+  job.frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
+  job.frame.probabilities.resize(config.objects.size());
+  for (size_t k = 0; k < job.objects.size(); ++k) {
+    job.frame.probabilities[job.objects[k]] =
+        boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
+  }
+  if (!request.boundary.data.empty() || request.boundary.width > 0) {
+    job.frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
+  }
+  return job;
+}
+
+bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
+  const std::shared_ptr<const EstimationSetup> current = setup();
+  try {
+    const FrameResult result = worker_->request({serviceJob(request, *current), current}).get();
+    response.result = toObjectPoseArray(result, *current);
+    response.success = true;
+    response.message = describeOutcome(result, current->config);
+  } catch (const std::exception& e) {
+    response.success = false;
+    response.message = e.what();
+    ROS_WARN("stocs: ~estimate failed: %s", e.what());
+  }
+  return true;  // the outcome is in the response, so the caller sees the message
+}
+
+bool StocsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  try {
+    const std::shared_ptr<const EstimationSetup> fresh = EstimationSetup::load(
+        config_file_, [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
+    checkSameInputs(setup()->config, fresh->config);
+    {
+      std::lock_guard<std::mutex> lock(setup_mutex_);
+      setup_ = fresh;
+    }
+    response.success = true;
+    response.message =
+        fmt::format("reloaded {} objects from {}", fresh->config.objects.size(), config_file_);
+  } catch (const InputError& e) {
+    response.success = false;
+    response.message = e.what();
+  }
+  ROS_INFO("stocs: ~reload: %s", response.message.c_str());
+  return true;
+}
+
+}  // namespace stocs_ros

@@ -1,0 +1,7 @@
+// The StoCS pose estimation node (see stocs_node.h and the README's "ROS node" section).
+#include "stocs_ros/run_node.h"
+#include "stocs_ros/stocs_node.h"
+
+int main(int argc, char** argv) {
+  return stocs_ros::runNode<stocs_ros::StocsNode>(argc, argv, "stocs");
+}

@@ -1,0 +1,58 @@
+#pragma once
+// Helpers of the rostest test nodes: waiting for messages, ground truth from the played dataset,
+// and pose errors.
+
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <Eigen/Geometry>
+#include <condition_variable>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+
+namespace stocs_ros::test {
+
+/// The first message on `topic` within `timeout` seconds (callbacks must be served by a spinner).
+template <class Message>
+std::optional<Message> waitForMessage(const std::string& topic, double timeout,
+                                      const std::function<bool(const Message&)>& accept = {}) {
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::optional<Message> received;
+  ros::NodeHandle nh;
+  const boost::function<void(const boost::shared_ptr<const Message>&)> callback =
+      [&](const boost::shared_ptr<const Message>& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!received && (!accept || accept(*m))) {
+          received = *m;
+          arrived.notify_all();
+        }
+      };
+  ros::Subscriber sub = nh.subscribe<Message>(topic, 5, callback);
+  std::unique_lock<std::mutex> lock(mutex);
+  arrived.wait_for(lock, std::chrono::duration<double>(timeout),
+                   [&] { return received.has_value(); });
+  std::optional<Message> out = received;
+  lock.unlock();
+  sub.shutdown();
+  return out;
+}
+
+/// Model-to-camera pose (metres) of the first ground-truth instance of `obj_id` in a BOP frame.
+Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scene, int image,
+                                  int obj_id);
+
+/// ADD-S error of `pose` against `truth` (model-to-camera, metres) on the vertices of the dataset's
+/// model of `obj_id`, as a fraction of the model's diameter: the acceptance measure of the
+/// real-frame tests, which forgives what the shape cannot tell apart.
+double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                         const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
+
+/// Translation error (metres) and rotation angle (radians) between two poses.
+double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+double rotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+
+}  // namespace stocs_ros::test

@@ -1,0 +1,100 @@
+// The node and the scene publisher started with bad configurations or parameters: each exits with
+// code 1 and a message naming the problem (run under rostest for the ROS master they need).
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <fstream>
+
+#include "test_support.h"
+
+namespace stocs_ros::test {
+namespace {
+
+constexpr char kObject[] = "objects:\n  - name: box\n    model: box.ply\n";
+
+/// A node name of its own for each run: private parameters stay on the parameter server after a
+/// run.
+std::string nextNodeName() {
+  static int runs = 0;
+  return "probe_" + std::to_string(++runs);
+}
+
+/// Runs `executable` as node `name` with ROS arguments; `timeout` ends it if it wrongly keeps
+/// running.
+int run(const std::string& executable, const std::string& args, std::string& output,
+        const std::string& name = nextNodeName()) {
+  return stocs::test::runCommand("timeout 60 " + executable + " __name:=" + name + " " + args,
+                                 output);
+}
+
+void expectNodeFails(const std::filesystem::path& config, const std::string& expected) {
+  std::string output;
+  EXPECT_EQ(run(STOCS_NODE_PATH, "_config:=" + config.string(), output), 1) << output;
+  EXPECT_NE(output.find(expected), std::string::npos) << "expected '" << expected << "' in:\n"
+                                                      << output;
+}
+
+std::filesystem::path writeConfig(const std::filesystem::path& dir, const std::string& name,
+                                  const std::string& text) {
+  std::ofstream(dir / name) << text;
+  return dir / name;
+}
+
+TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
+  const std::filesystem::path dir = stocs::test::scratchDir("configs");
+  stocs::test::writePly(dir / "box.ply", stocs::test::boxMesh({60, 40, 30}));
+
+  expectNodeFails(dir / "missing.yaml", "cannot open the configuration file");
+  expectNodeFails(writeConfig(dir, "broken.yaml", "objects: [\n"), "invalid YAML");
+  expectNodeFails(writeConfig(dir, "unknown_key.yaml",
+                              std::string(kObject) + "estimation:\n  stocs:\n    basez: 3\n"),
+                  "estimation.stocs.basez: unknown key");
+  expectNodeFails(writeConfig(dir, "out_of_range.yaml",
+                              std::string(kObject) + "estimation: {stocs: {bases: 0}}\n"),
+                  "bases 0 is outside");
+  expectNodeFails(writeConfig(dir, "wrong_type.yaml",
+                              std::string(kObject) + "input: {sync: {tolerance: soon}}\n"),
+                  "input.sync.tolerance: expected a number, got 'soon'");
+  expectNodeFails(
+      writeConfig(dir, "no_model.yaml", "objects:\n  - name: box\n    model: nowhere.ply\n"),
+      "object 'box': model " + (dir / "nowhere.ply").string());
+  expectNodeFails(writeConfig(dir, "no_objects.yaml", "objects: []\n"),
+                  "'objects' must be a non-empty list");
+
+  std::string output;
+  EXPECT_EQ(run(STOCS_NODE_PATH, "", output), 1) << output;
+  EXPECT_NE(output.find("config (the configuration file) is not set"), std::string::npos) << output;
+}
+
+TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
+  const std::filesystem::path dir = stocs::test::scratchDir("publisher");
+  const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
+  std::string output;
+  EXPECT_EQ(
+      run(SCENE_PUBLISHER_PATH, "_config:=" + config.string() + " _dataset:=/nonexistent", output),
+      1);
+  EXPECT_NE(output.find("/nonexistent"), std::string::npos) << output;
+
+  const std::filesystem::path data = dir / "data";
+  stocs::test::writeSyntheticBopDataset(data);
+  const std::string args = "_config:=" + config.string() + " _dataset:=" + data.string();
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0.0", output), 1) << output;
+  EXPECT_NE(output.find("rate 0 Hz is outside (0, 100]"), std::string::npos) << output;
+  // roscpp reads `_scenes:=4` as an integer, not a list.
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _scenes:=4", output), 1) << output;
+  EXPECT_NE(output.find("scenes must be a list of integers"), std::string::npos) << output;
+  // A list comes from the parameter server, as roslaunch sets it.
+  const std::string name = nextNodeName();
+  ros::param::set("/" + name + "/scenes", std::vector<int>{4});
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args, output, name), 1) << output;
+  EXPECT_NE(output.find("scene 4 does not exist"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace stocs_ros::test
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_bad_config");
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,242 @@
+// The node fed bad messages directly (remapped to /bad/cloud and /bad/probability/box): wrong
+// encoding, size mismatch, all-NaN, empty and unorganized clouds, stamps that never match. None
+// may produce an output or stop the node; the service names the latest frame's problem; a good
+// frame afterwards is estimated near the ground truth.
+#include <cv_bridge/cv_bridge.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_srvs/Trigger.h>
+#include <stocs_ros/Estimate.h>
+#include <stocs_ros/ObjectPoseArray.h>
+#include <tf2_eigen/tf2_eigen.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <mutex>
+#include <opencv2/core.hpp>
+#include <set>
+
+#include "ros_test_support.h"
+#include "stocs/bop_dataset.h"
+#include "stocs_ros/cloud_conversion.h"
+
+namespace stocs_ros::test {
+namespace {
+
+std::filesystem::path g_dataset;
+std::filesystem::path g_config;  ///< the node's configuration file, rewritten by the reload test
+constexpr char kService[] = "/stocs/estimate";
+
+class BadInputs : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    ros::NodeHandle nh;
+    cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/bad/cloud", 5);
+    probability_pub_ = nh.advertise<sensor_msgs::Image>("/bad/probability/box", 5);
+    const stocs::BopDataset dataset(g_dataset);
+    const cv::Mat depth = dataset.loadDepth(0, 0);
+    const stocs::BopFrameCamera camera = dataset.sceneCameras(0).at(0);
+    good_cloud_ = cloudToMsg(stocs::cloudFromDepth(depth, camera.intrinsics(depth.cols, depth.rows),
+                                                   camera.depth_scale / 1000),
+                             cv::Mat());
+    good_cloud_.header.frame_id = "camera";
+    good_probability_ =
+        *cv_bridge::CvImage(good_cloud_.header, "32FC1", dataset.loadProbability(0, 0, 1))
+             .toImageMsg();
+    const boost::function<void(const ObjectPoseArray::ConstPtr&)> on_objects =
+        [](const ObjectPoseArray::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          output_stamps_.insert(m->header.stamp);
+          last_output_ = *m;
+        };
+    objects_sub_ = nh.subscribe<ObjectPoseArray>("/stocs/objects", 10, on_objects);
+    // The node subscribes once its model is ready.
+    const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(120);
+    while ((cloud_pub_.getNumSubscribers() == 0 || probability_pub_.getNumSubscribers() == 0) &&
+           ros::WallTime::now() < until) {
+      ros::WallDuration(0.1).sleep();
+    }
+  }
+
+  static void TearDownTestSuite() {
+    objects_sub_.shutdown();
+    cloud_pub_.shutdown();
+    probability_pub_.shutdown();
+  }
+
+  /// Publishes a frame with stamps `cloud_stamp` and `probability_stamp`.
+  static void publish(sensor_msgs::PointCloud2 cloud, sensor_msgs::Image probability,
+                      const ros::Time& cloud_stamp, const ros::Time& probability_stamp) {
+    cloud.header.stamp = cloud_stamp;
+    probability.header.stamp = probability_stamp;
+    cloud_pub_.publish(cloud);
+    probability_pub_.publish(probability);
+  }
+
+  static ros::Time publishBad(sensor_msgs::PointCloud2 cloud, sensor_msgs::Image probability) {
+    const ros::Time stamp = ros::Time::now();
+    publish(std::move(cloud), std::move(probability), stamp, stamp);
+    bad_stamps_.push_back(stamp);
+    ros::WallDuration(0.5).sleep();
+    return stamp;
+  }
+
+  static Estimate::Response estimate() {
+    EXPECT_TRUE(ros::service::waitForService(kService, ros::Duration(60)));
+    Estimate srv;
+    EXPECT_TRUE(ros::service::call(kService, srv));
+    return srv.response;
+  }
+
+  static ros::Publisher cloud_pub_, probability_pub_;
+  static ros::Subscriber objects_sub_;
+  static sensor_msgs::PointCloud2 good_cloud_;
+  static sensor_msgs::Image good_probability_;
+  static std::vector<ros::Time> bad_stamps_;
+  static std::mutex mutex_;
+  static std::set<ros::Time> output_stamps_;
+  static ObjectPoseArray last_output_;
+};
+
+ros::Publisher BadInputs::cloud_pub_, BadInputs::probability_pub_;
+ros::Subscriber BadInputs::objects_sub_;
+sensor_msgs::PointCloud2 BadInputs::good_cloud_;
+sensor_msgs::Image BadInputs::good_probability_;
+std::vector<ros::Time> BadInputs::bad_stamps_;
+std::mutex BadInputs::mutex_;
+std::set<ros::Time> BadInputs::output_stamps_;
+ObjectPoseArray BadInputs::last_output_;
+
+TEST_F(BadInputs, ServiceBeforeAnyFrameSaysThereIsNone) {
+  ASSERT_GT(cloud_pub_.getNumSubscribers(), 0u) << "the node never subscribed /bad/cloud";
+  const Estimate::Response r = estimate();
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("no synchronized input frame yet"), std::string::npos) << r.message;
+}
+
+TEST_F(BadInputs, BadFramesGiveNoOutputAndTheNodeKeepsAnswering) {
+  sensor_msgs::Image colour = good_probability_;
+  colour.encoding = "rgb8";
+  publishBad(good_cloud_, colour);
+
+  sensor_msgs::Image small = *cv_bridge::CvImage(good_probability_.header, "mono8",
+                                                 cv::Mat(10, 10, CV_8UC1, cv::Scalar(200)))
+                                  .toImageMsg();
+  publishBad(good_cloud_, small);
+
+  sensor_msgs::PointCloud2 nan_cloud = good_cloud_;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (size_t i = 0; i + sizeof(float) <= nan_cloud.data.size(); i += sizeof(float)) {
+    std::memcpy(&nan_cloud.data[i], &nan, sizeof(float));
+  }
+  publishBad(nan_cloud, good_probability_);
+
+  sensor_msgs::PointCloud2 empty_cloud = good_cloud_;
+  empty_cloud.width = empty_cloud.height = 0;
+  empty_cloud.data.clear();
+  publishBad(empty_cloud, good_probability_);
+
+  sensor_msgs::PointCloud2 unorganized = good_cloud_;
+  unorganized.width *= unorganized.height;
+  unorganized.height = 1;
+  unorganized.row_step = unorganized.width * unorganized.point_step;
+  publishBad(unorganized, good_probability_);
+
+  // Stamps half a second apart never match (tolerance 0.01 s).
+  const ros::Time apart = ros::Time::now();
+  publish(good_cloud_, good_probability_, apart, apart + ros::Duration(0.5));
+  bad_stamps_.push_back(apart);
+  ros::WallDuration(2.0).sleep();
+
+  EXPECT_TRUE(ros::service::exists(kService, false)) << "the node is gone";
+  // The latest synchronized frame is the unorganized cloud: the service names its problem.
+  const Estimate::Response r = estimate();
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("cloud is not organized"), std::string::npos) << r.message;
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const ros::Time& stamp : bad_stamps_) {
+    EXPECT_EQ(output_stamps_.count(stamp), 0u) << "an output for the bad frame at " << stamp;
+  }
+}
+
+/// Rewrites the node's configuration file and calls ~reload.
+std_srvs::Trigger::Response reloadWith(const std::string& config) {
+  std::ofstream(g_config) << config;
+  std_srvs::Trigger srv;
+  EXPECT_TRUE(ros::service::call("/stocs/reload", srv));
+  return srv.response;
+}
+
+/// Puts a file's text back when it goes out of scope, whatever the test did to it.
+struct RestoreFile {
+  std::filesystem::path file;
+  std::string text;
+  ~RestoreFile() { std::ofstream(file) << text; }
+};
+
+TEST_F(BadInputs, ReloadAppliesAGoodFileAndKeepsTheSetupOnABadOne) {
+  std::ifstream file(g_config);
+  const RestoreFile restore{g_config, std::string(std::istreambuf_iterator<char>(file), {})};
+  const std::string& original = restore.text;
+  ASSERT_FALSE(original.empty()) << g_config;
+
+  std_srvs::Trigger::Response r = reloadWith(original + "estimation: {stocs: {bases: 0}}\n");
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("bases 0 is outside"), std::string::npos) << r.message;
+  r = reloadWith(original + "input: {uint16_scale: 100}\n");
+  EXPECT_FALSE(r.success);
+  EXPECT_NE(r.message.find("restart the node"), std::string::npos) << r.message;
+  // The next test estimates a good frame with the reloaded setup.
+  r = reloadWith(original + "estimation: {stocs: {bases: 60}}\n");
+  EXPECT_TRUE(r.success) << r.message;
+  EXPECT_NE(r.message.find("reloaded 1 objects"), std::string::npos) << r.message;
+}
+
+TEST_F(BadInputs, AGoodFrameAfterwardsIsEstimated) {
+  const ros::Time stamp = ros::Time::now();
+  publish(good_cloud_, good_probability_, stamp, stamp);
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(60);
+  ObjectPoseArray output;
+  while (ros::WallTime::now() < until) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (output_stamps_.count(stamp)) {
+        output = last_output_;
+        break;
+      }
+    }
+    ros::WallDuration(0.1).sleep();
+  }
+  ASSERT_EQ(output.header.stamp, stamp) << "no output for the good frame";
+  ASSERT_EQ(output.objects.size(), 1u);
+  Eigen::Isometry3d pose;
+  tf2::fromMsg(output.objects[0].pose, pose);
+  const Eigen::Isometry3d truth = groundTruthPose(g_dataset, 0, 0, 1);
+  EXPECT_LT(translationError(pose, truth), 0.005);
+  EXPECT_LT(rotationError(pose, truth), 0.05);
+
+  const Estimate::Response r = estimate();
+  EXPECT_TRUE(r.success) << r.message;
+  EXPECT_EQ(r.result.header.stamp, stamp);
+}
+
+}  // namespace
+}  // namespace stocs_ros::test
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_bad_inputs");
+  std::string dataset;
+  ros::NodeHandle("~").getParam("dataset", dataset);
+  stocs_ros::test::g_dataset = dataset;
+  std::string config;
+  ros::NodeHandle("~").getParam("config", config);
+  stocs_ros::test::g_config = config;
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}

@@ -1,0 +1,175 @@
+// One frame from messages to poses, on the generated box frame loaded as the scene publisher loads
+// it: both input forms find the known pose, and bad inputs are named in the error.
+#include <cv_bridge/cv_bridge.h>
+#include <gtest/gtest.h>
+
+#include <boost/make_shared.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "stocs/error.h"
+#include "stocs_ros/bop_frame.h"
+#include "stocs_ros/cloud_conversion.h"
+#include "stocs_ros/frame_estimation.h"
+#include "test_support.h"
+
+namespace stocs_ros {
+namespace {
+
+class FrameEstimation : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::filesystem::path(stocs::test::scratchDir("frame_estimation"));
+    truth_ = stocs::test::writeSyntheticBopDataset(*dir_ / "data");
+    const stocs::BopDataset dataset(*dir_ / "data");
+    frame_ = new BopFrame(loadBopFrame(dataset, 0, 0, dataset.sceneCameras(0).at(0), {1, 2}));
+  }
+  static void TearDownTestSuite() {
+    delete frame_;
+    delete dir_;
+  }
+
+  static std::shared_ptr<const EstimationSetup> setup(const std::string& input) {
+    std::ofstream(*dir_ / "node.yaml")
+        << "objects:\n  - {name: box, model: data/models/obj_000001.ply}\n"
+        << "model_cache: cache\n"
+        << input;
+    return EstimationSetup::load(*dir_ / "node.yaml", [](const std::string&) {});
+  }
+
+  static sensor_msgs::ImagePtr image(const std::string& encoding, const cv::Mat& pixels) {
+    std_msgs::Header header;
+    header.frame_id = "camera";
+    return cv_bridge::CvImage(header, encoding, pixels).toImageMsg();
+  }
+
+  static EstimationJob cloudJob() {
+    EstimationJob job;
+    auto cloud = boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(frame_->cloud, cv::Mat()));
+    cloud->header.frame_id = "camera";
+    cloud->header.stamp = ros::Time(3.0);
+    job.frame.cloud = cloud;
+    job.frame.probabilities = {image("32FC1", frame_->probabilities[0])};
+    job.objects = {0};
+    return job;
+  }
+
+  void expectFoundNearTruth(const FrameResult& result) const {
+    ASSERT_EQ(result.objects.size(), 1u);
+    const stocs::PoseEstimate& e = result.objects[0].estimate.estimate;
+    ASSERT_TRUE(e.found);
+    EXPECT_LT((e.pose.translation() - truth_.translation()).norm(), 0.005f);
+    EXPECT_LT(Eigen::AngleAxisf(e.pose.linear().transpose() * truth_.linear()).angle(), 0.05f);
+  }
+
+  static std::string errorOf(const EstimationJob& job, const EstimationSetup& s) {
+    try {
+      estimateFrame(job, s);
+    } catch (const stocs::InputError& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  static std::filesystem::path* dir_;
+  static BopFrame* frame_;
+  static Eigen::Isometry3f truth_;
+};
+
+std::filesystem::path* FrameEstimation::dir_ = nullptr;
+BopFrame* FrameEstimation::frame_ = nullptr;
+Eigen::Isometry3f FrameEstimation::truth_;
+
+TEST_F(FrameEstimation, LoadedFrameHoldsTheDatasetImages) {
+  EXPECT_EQ(frame_->camera.width, 320);
+  EXPECT_EQ(frame_->camera.fx, 300);
+  EXPECT_TRUE(frame_->bgr.empty());
+  EXPECT_TRUE(frame_->boundary.empty());
+  ASSERT_EQ(frame_->probabilities.size(), 2u);
+  EXPECT_GT(cv::countNonZero(frame_->probabilities[0]), 1000);
+  EXPECT_EQ(cv::countNonZero(frame_->probabilities[1]), 0);  // no map for object 2
+  int valid = 0;
+  for (int v = 0; v < frame_->depth.rows; ++v) {
+    for (int u = 0; u < frame_->depth.cols; ++u) {
+      const float d = frame_->depth.at<float>(v, u);
+      const bool has_point = frame_->cloud.isValid(v * frame_->cloud.width + u);
+      EXPECT_EQ(std::isfinite(d), has_point);
+      if (has_point) {
+        EXPECT_NEAR(d, frame_->cloud.at(u, v).z(), 1e-6f);
+      }
+      valid += has_point;
+    }
+  }
+  EXPECT_GT(valid, 1000);
+}
+
+TEST_F(FrameEstimation, CloudAndPerObjectImageGiveTheKnownPose) {
+  const auto s = setup("");
+  const FrameResult result = estimateFrame(cloudJob(), *s);
+  EXPECT_EQ(result.header.stamp, ros::Time(3.0));
+  EXPECT_EQ(result.header.frame_id, "camera");
+  expectFoundNearTruth(result);
+}
+
+TEST_F(FrameEstimation, DepthImageAndMultichannelImageGiveTheKnownPose) {
+  const auto s = setup(
+      "input: {source: depth, probability: multichannel, channels: [\"-\", box], boundary: "
+      "true}\n");
+  sensor_msgs::CameraInfo info;
+  info.width = frame_->camera.width;
+  info.height = frame_->camera.height;
+  info.K = {
+      frame_->camera.fx, 0, frame_->camera.cx, 0, frame_->camera.fy, frame_->camera.cy, 0, 0, 1};
+  cv::Mat channels[2] = {cv::Mat::zeros(frame_->depth.size(), CV_8UC1), cv::Mat()};
+  frame_->probabilities[0].convertTo(channels[1], CV_8UC1, 255.0);
+  cv::Mat merged;
+  cv::merge(channels, 2, merged);
+  EstimationJob job;
+  job.frame.depth = image("32FC1", frame_->depth);
+  job.frame.camera_info = boost::make_shared<sensor_msgs::CameraInfo>(info);
+  job.frame.multichannel = image("8UC2", merged);
+  job.frame.boundary = image("mono8", cv::Mat(frame_->depth.size(), CV_8UC1, cv::Scalar(255)));
+  job.objects = {0};
+  expectFoundNearTruth(estimateFrame(job, *s));
+}
+
+TEST_F(FrameEstimation, BadInputsAreNamed) {
+  const auto s = setup("");
+  EstimationJob colour = cloudJob();
+  colour.frame.probabilities[0] = image("bgr8", cv::Mat(240, 320, CV_8UC3, cv::Scalar(0)));
+  EXPECT_NE(errorOf(colour, *s).find("probability image of 'box': encoding 'bgr8'"),
+            std::string::npos)
+      << errorOf(colour, *s);
+
+  EstimationJob missing = cloudJob();
+  missing.frame.probabilities[0].reset();
+  EXPECT_EQ(errorOf(missing, *s), "object 'box': the frame has no probability image");
+
+  EstimationJob small = cloudJob();
+  small.frame.probabilities[0] = image("mono8", cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
+  EXPECT_NE(
+      errorOf(small, *s).find("object 'box': probability image is 10x10 but the cloud is 320x240"),
+      std::string::npos)
+      << errorOf(small, *s);
+
+  EstimationJob nan = cloudJob();
+  stocs::OrganizedCloud nothing(320, 240);
+  nan.frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(nothing, cv::Mat()));
+  EXPECT_NE(errorOf(nan, *s).find("cloud: organized cloud 320x240 has too few valid points (0)"),
+            std::string::npos)
+      << errorOf(nan, *s);
+
+  EstimationJob wrong_boundary = cloudJob();
+  wrong_boundary.frame.boundary = image("mono16", cv::Mat(240, 320, CV_16UC1, cv::Scalar(0)));
+  EXPECT_NE(errorOf(wrong_boundary, *s).find("boundary image: "), std::string::npos);
+
+  EstimationJob budget = cloudJob();
+  budget.time_budget = 7200;
+  EXPECT_NE(errorOf(budget, *s).find("time budget 7200 s is outside"), std::string::npos)
+      << errorOf(budget, *s);
+}
+
+}  // namespace
+}  // namespace stocs_ros

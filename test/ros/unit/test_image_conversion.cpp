@@ -1,0 +1,100 @@
+// Probability and boundary images from sensor_msgs/Image: every accepted encoding and the
+// rejected ones, with the encoding or size in the message.
+#include <cv_bridge/cv_bridge.h>
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/error.h"
+#include "stocs_ros/image_conversion.h"
+
+namespace stocs_ros {
+namespace {
+
+sensor_msgs::ImagePtr image(const std::string& encoding, const cv::Mat& pixels) {
+  return cv_bridge::CvImage(std_msgs::Header(), encoding, pixels).toImageMsg();
+}
+
+template <class Convert>
+std::string errorOf(Convert&& convert) {
+  try {
+    convert();
+  } catch (const stocs::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ImageConversion, ProbabilityEncodingsAreScaled) {
+  cv::Mat f(2, 3, CV_32FC1, cv::Scalar(0.25f));
+  EXPECT_FLOAT_EQ(probabilityFromImage(image("32FC1", f), 10000).at<float>(1, 2), 0.25f);
+  cv::Mat u16(2, 3, CV_16UC1, cv::Scalar(5000));
+  EXPECT_FLOAT_EQ(probabilityFromImage(image("mono16", u16), 10000).at<float>(0, 0), 0.5f);
+  EXPECT_FLOAT_EQ(probabilityFromImage(image("16UC1", u16), 5000).at<float>(0, 0), 1.0f);
+  cv::Mat u8(2, 3, CV_8UC1, cv::Scalar(51));
+  EXPECT_FLOAT_EQ(probabilityFromImage(image("mono8", u8), 10000).at<float>(0, 0), 0.2f);
+}
+
+TEST(ImageConversion, BadProbabilityImagesAreNamed) {
+  const cv::Mat bgr(2, 3, CV_8UC3, cv::Scalar(1, 2, 3));
+  EXPECT_NE(errorOf([&] { probabilityFromImage(image("rgb8", bgr), 10000); }).find("'rgb8'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              probabilityFromImage(image("16SC1", cv::Mat(2, 3, CV_16SC1)), 10000);
+            }).find("'16SC1'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              probabilityFromImage(image("32FC2", cv::Mat(2, 3, CV_32FC2)), 10000);
+            }).find("2 channels"),
+            std::string::npos);
+  cv::Mat above(2, 3, CV_16UC1, cv::Scalar(20000));
+  EXPECT_NE(
+      errorOf([&] { probabilityFromImage(image("mono16", above), 10000); }).find("outside [0, 1]"),
+      std::string::npos);
+  sensor_msgs::ImagePtr short_rows = image("32FC1", cv::Mat(2, 3, CV_32FC1, cv::Scalar(0)));
+  short_rows->step = 8;
+  EXPECT_NE(errorOf([&] { probabilityFromImage(short_rows, 10000); }).find("step 8"),
+            std::string::npos);
+  sensor_msgs::ImagePtr truncated = image("32FC1", cv::Mat(2, 3, CV_32FC1, cv::Scalar(0)));
+  truncated->data.resize(4);
+  EXPECT_NE(errorOf([&] { probabilityFromImage(truncated, 10000); }).find("4 data bytes"),
+            std::string::npos);
+  sensor_msgs::ImagePtr empty = image("32FC1", cv::Mat(2, 3, CV_32FC1));
+  empty->width = 0;
+  EXPECT_NE(errorOf([&] { probabilityFromImage(empty, 10000); }).find("empty"), std::string::npos);
+}
+
+TEST(ImageConversion, MultichannelImagesSplitIntoChannels) {
+  std::vector<cv::Mat> planes = {cv::Mat(2, 3, CV_16UC1, cv::Scalar(0)),
+                                 cv::Mat(2, 3, CV_16UC1, cv::Scalar(10000)),
+                                 cv::Mat(2, 3, CV_16UC1, cv::Scalar(2500))};
+  cv::Mat merged;
+  cv::merge(planes, merged);
+  const std::vector<cv::Mat> p = probabilitiesFromChannels(image("16UC3", merged), 3, 10000);
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_FLOAT_EQ(p[0].at<float>(1, 1), 0.0f);
+  EXPECT_FLOAT_EQ(p[1].at<float>(1, 1), 1.0f);
+  EXPECT_FLOAT_EQ(p[2].at<float>(1, 1), 0.25f);
+  EXPECT_NE(errorOf([&] {
+              probabilitiesFromChannels(image("16UC3", merged), 4, 10000);
+            }).find("the config names 4"),
+            std::string::npos);
+  planes[2].setTo(12000);
+  cv::merge(planes, merged);
+  EXPECT_NE(errorOf([&] {
+              probabilitiesFromChannels(image("16UC3", merged), 3, 10000);
+            }).find("channel 2: "),
+            std::string::npos);
+}
+
+TEST(ImageConversion, BoundaryMapsAreMono8) {
+  cv::Mat interior(2, 3, CV_8UC1, cv::Scalar(255));
+  EXPECT_EQ(boundaryFromImage(image("mono8", interior)).at<uint8_t>(1, 2), 255);
+  EXPECT_NE(errorOf([&] {
+              boundaryFromImage(image("mono16", cv::Mat(2, 3, CV_16UC1)));
+            }).find("'mono16'"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace stocs_ros

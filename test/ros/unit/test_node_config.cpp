@@ -1,0 +1,215 @@
+// The node's configuration file: config/default.yaml says the truth about the defaults, every key
+// reaches its field, paths resolve, and each kind of mistake is reported with its file, key and
+// problem.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "stocs/error.h"
+#include "stocs_ros/node_config.h"
+#include "test_support.h"
+
+namespace stocs_ros {
+namespace {
+
+std::filesystem::path writeConfig(const std::string& text) {
+  const std::filesystem::path dir = stocs::test::scratchDir("config");
+  std::ofstream(dir / "node.yaml") << text;
+  return dir / "node.yaml";
+}
+
+/// The message of the InputError that loading `text` throws ("" when it loads).
+std::string loadError(const std::string& text) {
+  try {
+    loadNodeConfig(writeConfig(text));
+  } catch (const stocs::InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+constexpr char kBox[] = "objects:\n  - name: box\n    model: box.ply\n";
+
+TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
+  setenv("STOCS_DATASETS", "/data", 1);
+  const NodeConfig c = loadNodeConfig("config/default.yaml");
+  unsetenv("STOCS_DATASETS");
+  ASSERT_EQ(c.objects.size(), 1u);
+  EXPECT_EQ(c.objects[0].name, "cat");
+  EXPECT_EQ(c.objects[0].id, 6);
+  EXPECT_EQ(c.objects[0].model, "/data/lmo-cat/models/obj_000006.ply");
+  EXPECT_FLOAT_EQ(c.objects[0].unit_scale, 0.001f);
+  EXPECT_TRUE(c.objects[0].mesh_url.empty());
+  EXPECT_TRUE(c.objects[0].symmetries.empty());
+
+  const InputConfig in;
+  EXPECT_EQ(c.input.depth, in.depth);
+  EXPECT_EQ(c.input.probability, in.probability);
+  EXPECT_EQ(c.input.uint16_scale, in.uint16_scale);
+  EXPECT_EQ(c.input.boundary, in.boundary);
+  EXPECT_EQ(c.input.sync.tolerance, in.sync.tolerance);
+  EXPECT_EQ(c.input.sync.queue_size, in.sync.queue_size);
+  EXPECT_EQ(c.input.sync.max_age, in.sync.max_age);
+  const OutputConfig out;
+  EXPECT_EQ(c.output.frame_prefix, out.frame_prefix);
+  EXPECT_EQ(c.output.tf, out.tf);
+  EXPECT_EQ(c.output.markers, out.markers);
+  EXPECT_EQ(c.output.estimate_on_frames, out.estimate_on_frames);
+  EXPECT_EQ(c.model_cache, stocs::ModelCache::defaultDirectory());
+
+  const stocs::PipelineParams d;
+  const stocs::PipelineParams& p = c.estimation;
+  EXPECT_EQ(p.segment.min_probability, d.segment.min_probability);
+  EXPECT_EQ(p.segment.voxel_size, d.segment.voxel_size);
+  EXPECT_EQ(p.segment.normals.radius, d.segment.normals.radius);
+  EXPECT_EQ(p.segment.normals.samples_per_axis, d.segment.normals.samples_per_axis);
+  EXPECT_EQ(p.segment.normals.min_neighbours, d.segment.normals.min_neighbours);
+  EXPECT_EQ(p.model.sampling.sampling_ratio, d.model.sampling.sampling_ratio);
+  EXPECT_EQ(p.model.sampling.normal_neighbours, d.model.sampling.normal_neighbours);
+  EXPECT_EQ(p.model.sampling.orientation_viewpoints, d.model.sampling.orientation_viewpoints);
+  EXPECT_EQ(p.model.ppf.distance_step, d.model.ppf.distance_step);
+  EXPECT_EQ(p.model.ppf.angle_step_deg, d.model.ppf.angle_step_deg);
+  EXPECT_EQ(p.model.ppf.min_distance_ratio, d.model.ppf.min_distance_ratio);
+  EXPECT_EQ(p.stocs.base.wide_angle_deg, d.stocs.base.wide_angle_deg);
+  EXPECT_EQ(p.stocs.base.coplanarity, d.stocs.base.coplanarity);
+  EXPECT_EQ(p.stocs.base.max_attempts, d.stocs.base.max_attempts);
+  EXPECT_EQ(p.stocs.congruent.tolerance, d.stocs.congruent.tolerance);
+  EXPECT_EQ(p.stocs.congruent.max_sets, d.stocs.congruent.max_sets);
+  EXPECT_EQ(p.stocs.congruent.min_line_angle_deg, d.stocs.congruent.min_line_angle_deg);
+  EXPECT_EQ(p.stocs.max_fit_rms, d.stocs.max_fit_rms);
+  EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
+  EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
+  EXPECT_EQ(p.stocs.icp.enabled, d.stocs.icp.enabled);
+  EXPECT_EQ(p.stocs.icp.iterations, d.stocs.icp.iterations);
+  EXPECT_EQ(p.stocs.icp.max_distance, d.stocs.icp.max_distance);
+  EXPECT_EQ(p.stocs.icp.normal_angle_deg, d.stocs.icp.normal_angle_deg);
+  EXPECT_EQ(p.stocs.bases, d.stocs.bases);
+  EXPECT_EQ(p.stocs.time_budget, d.stocs.time_budget);
+  EXPECT_EQ(p.stocs.seed, d.stocs.seed);
+  EXPECT_EQ(p.stocs.threads, d.stocs.threads);
+}
+
+TEST(NodeConfig, ValuesReachTheirFieldsAndPathsResolve) {
+  const std::filesystem::path file = writeConfig(R"(objects:
+  - name: box
+    id: 7
+    model: models/box.ply
+    unit_scale: 0.01
+    mesh: package://stocs_ros/config/box.dae
+    symmetries:
+      discrete: [[-1, 0, 0, 10,  0, -1, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]]
+      continuous: [{axis: [0, 0, 2], offset: [0, 5, 0]}]
+  - name: can_2
+    model: /abs/can.ply
+    mesh: meshes/can.stl
+input:
+  source: depth
+  probability: multichannel
+  channels: ["-", can_2, box]
+  uint16_scale: 1000
+  boundary: true
+  sync: {tolerance: 0.05, queue_size: 4, max_age: 0}
+output: {frame_prefix: "est_", tf: false, markers: false, estimate_on_frames: false}
+model_cache: none
+estimation:
+  segment: {min_probability: 0.3, normals: {radius: 0.02}}
+  model: {ppf: {angle_step_deg: 12}}
+  stocs: {bases: 40, seed: 9, icp: {enabled: false}, lcp: {distance: 0.004}}
+)");
+  const NodeConfig c = loadNodeConfig(file);
+  const std::filesystem::path dir = file.parent_path();
+  ASSERT_EQ(c.objects.size(), 2u);
+  const ObjectConfig& box = c.objects[0];
+  EXPECT_EQ(box.id, 7);
+  EXPECT_EQ(box.model, dir / "models/box.ply");
+  EXPECT_FLOAT_EQ(box.unit_scale, 0.01f);
+  EXPECT_FLOAT_EQ(box.mesh_scale, 0.01f);
+  EXPECT_EQ(box.mesh_url, "package://stocs_ros/config/box.dae");
+  ASSERT_EQ(box.symmetries.discrete.size(), 1u);
+  EXPECT_TRUE(box.symmetries.discrete[0].translation().isApprox(Eigen::Vector3f(0.1f, 0, 0)));
+  ASSERT_EQ(box.symmetries.continuous.size(), 1u);
+  EXPECT_TRUE(box.symmetries.continuous[0].axis.isApprox(Eigen::Vector3f::UnitZ()));
+  EXPECT_TRUE(box.symmetries.continuous[0].offset.isApprox(Eigen::Vector3f(0, 0.05f, 0)));
+  EXPECT_EQ(c.objects[1].id, 2);  // default: position + 1
+  EXPECT_EQ(c.objects[1].model, "/abs/can.ply");
+  EXPECT_EQ(c.objects[1].mesh_url, "file://" + (dir / "meshes/can.stl").string());
+  EXPECT_EQ(c.objectIndex("can_2"), 1);
+  EXPECT_EQ(c.objectIndex("cup"), -1);
+
+  EXPECT_EQ(c.input.depth, DepthSource::kDepthImage);
+  EXPECT_EQ(c.input.probability, ProbabilitySource::kMultichannel);
+  EXPECT_EQ(c.input.channels, (std::vector<std::string>{"-", "can_2", "box"}));
+  EXPECT_EQ(c.input.uint16_scale, 1000);
+  EXPECT_TRUE(c.input.boundary);
+  EXPECT_EQ(c.input.sync.tolerance, 0.05);
+  EXPECT_EQ(c.input.sync.queue_size, 4);
+  EXPECT_EQ(c.input.sync.max_age, 0);
+  EXPECT_EQ(c.output.frame_prefix, "est_");
+  EXPECT_FALSE(c.output.tf || c.output.markers || c.output.estimate_on_frames);
+  EXPECT_TRUE(c.model_cache.empty());
+  EXPECT_FLOAT_EQ(c.estimation.segment.min_probability, 0.3f);
+  EXPECT_FLOAT_EQ(c.estimation.segment.normals.radius, 0.02f);
+  EXPECT_FLOAT_EQ(c.estimation.model.ppf.angle_step_deg, 12.0f);
+  EXPECT_EQ(c.estimation.stocs.bases, 40);
+  EXPECT_EQ(c.estimation.stocs.seed, 9u);
+  EXPECT_FALSE(c.estimation.stocs.icp.enabled);
+  EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.distance, 0.004f);
+}
+
+TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
+  const std::string box = kBox;
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"objects: [\n", "invalid YAML"},
+      {"objects: []\n", "'objects' must be a non-empty list"},
+      {box + "estimation:\n  stocs:\n    basez: 3\n",
+       "node.yaml:6: estimation.stocs.basez: unknown key"},
+      {box + "input: {sync: {tolerance: soon}}\n",
+       "input.sync.tolerance: expected a number, got 'soon'"},
+      {box + "estimation: {stocs: {bases: 2.5}}\n", "estimation.stocs.bases: expected an integer"},
+      {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
+      {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
+      {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
+      {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
+      {box + "input: {probability: multichannel, channels: [box, cup]}\n",
+       "input.channels names 'cup', which is not a configured object (box)"},
+      {box + "input: {probability: multichannel, channels: [\"-\"]}\n",
+       "object 'box' has no channel in input.channels"},
+      {box + "input: {channels: [box]}\n", "input.channels is only used with"},
+      {box + "output: {tf: maybe}\n", "output.tf: expected true or false, got 'maybe'"},
+      {"objects:\n  - model: box.ply\n", "objects[0].name '' must start with a letter"},
+      {"objects:\n  - name: my cat\n    model: cat.ply\n", "objects[0].name 'my cat'"},
+      {"objects:\n  - name: box\n", "objects[0].model is missing"},
+      {box + "  - name: box\n    model: other.ply\n", "objects[1] repeats the name 'box'"},
+      {"objects:\n  - {name: a, id: 3, model: a.ply}\n  - {name: b, id: 3, model: b.ply}\n",
+       "repeats the name 'b' or the id 3"},
+      {"objects:\n  - {name: a, model: a.ply, colour: red}\n", "objects[0].colour: unknown key"},
+      {"objects:\n  - {name: a, model: $(env STOCS_NO_SUCH_VARIABLE)/a.ply}\n",
+       "environment variable STOCS_NO_SUCH_VARIABLE is not set"},
+      {"objects:\n  - {name: a, model: package://no_such_package/a.ply}\n",
+       "ROS package 'no_such_package' is not found"},
+      {"objects:\n  - {name: a, model: a.ply, symmetries: {discrete: [[1, 2, 3]]}}\n",
+       "objects[0].symmetries.discrete[0]: expected a list of 16 numbers"},
+      {"objects:\n  - {name: a, model: a.ply, symmetries: {discrete: [[2,0,0,0, 0,1,0,0, 0,0,1,0, "
+       "0,0,0,1]]}}\n",
+       "rotation part is not a rotation matrix"},
+      {"objects:\n  - {name: a, model: a.ply, symmetries: {continuous: [{axis: [0, 0, 0]}]}}\n",
+       "axis has zero length"},
+  };
+  for (const auto& [text, expected] : cases) {
+    const std::string error = loadError(text);
+    EXPECT_NE(error.find(expected), std::string::npos)
+        << "config:\n"
+        << text << "expected an error with '" << expected << "', got '" << error << "'";
+  }
+  EXPECT_EQ(loadError(box), "");
+  try {
+    loadNodeConfig("/no/such/file.yaml");
+    ADD_FAILURE() << "a missing file loaded";
+  } catch (const stocs::InputError& e) {
+    EXPECT_STREQ(e.what(), "/no/such/file.yaml: cannot open the configuration file");
+  }
+}
+
+}  // namespace
+}  // namespace stocs_ros
