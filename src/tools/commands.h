@@ -14,5 +14,6 @@ struct Command {
 
 Command registerEstimate(CLI::App& app);
 Command registerPrepare(CLI::App& app);
+Command registerMeshes(CLI::App& app);
 
 }  // namespace stocs::tools

@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.option_defaults()->always_capture_default();
   const std::vector<stocs::tools::Command> commands = {stocs::tools::registerEstimate(app),
-                                                       stocs::tools::registerPrepare(app)};
+                                                       stocs::tools::registerPrepare(app),
+                                                       stocs::tools::registerMeshes(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const stocs::tools::Command& command : commands) {

@@ -27,7 +27,7 @@ Eigen::Isometry3f at(float x, float y, float z) {
 TEST(DepthRenderer, AFrontoParallelBoxFaceHasItsDepthAndProjectedArea) {
   DepthRenderer r(camera());
   // A 10 x 10 x 2 cm box whose front face is at z = 1 m - 1 cm.
-  r.draw(test::boxMesh({0.1f, 0.1f, 0.02f}), at(0, 0, 1.0f), 7);
+  r.draw(boxMesh({0.1f, 0.1f, 0.02f}), at(0, 0, 1.0f), 7);
   EXPECT_NEAR(r.depth().at<float>(60, 80), 0.99f, 1e-5f);
   EXPECT_EQ(r.labels().at<int>(60, 80), 7);
   const cv::Vec3f n = r.normals().at<cv::Vec3f>(60, 80);
@@ -42,7 +42,7 @@ TEST(DepthRenderer, DepthIsPerspectiveCorrectOnASlantedFace) {
   DepthRenderer r(camera());
   Eigen::Isometry3f pose = at(0, 0, 1.0f);
   pose.linear() = Eigen::AngleAxisf(0.5f, Eigen::Vector3f::UnitY()).toRotationMatrix();
-  const MeshData box = test::boxMesh({0.2f, 0.2f, 0.02f});
+  const MeshData box = boxMesh({0.2f, 0.2f, 0.02f});
   r.draw(box, pose, 1);
   // The front face is the plane n.x = d with n = R z (facing -z after the flip) through R
   // (0,0,-0.01) + t.
@@ -59,7 +59,7 @@ TEST(DepthRenderer, DepthIsPerspectiveCorrectOnASlantedFace) {
 TEST(DepthRenderer, NearerObjectsHideFartherOnesInAnyOrder) {
   for (bool near_first : {true, false}) {
     DepthRenderer r(camera());
-    const MeshData box = test::boxMesh({0.1f, 0.1f, 0.02f});
+    const MeshData box = boxMesh({0.1f, 0.1f, 0.02f});
     if (near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
     r.draw(box, at(0, 0, 1.0f), 1);
     if (!near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
@@ -71,7 +71,7 @@ TEST(DepthRenderer, NearerObjectsHideFartherOnesInAnyOrder) {
 
 TEST(DepthRenderer, GeometryBehindTheCameraIsSkipped) {
   DepthRenderer r(camera());
-  r.draw(test::boxMesh({0.1f, 0.1f, 0.1f}), at(0, 0, -1.0f), 1);
+  r.draw(boxMesh({0.1f, 0.1f, 0.1f}), at(0, 0, -1.0f), 1);
   EXPECT_EQ(cv::countNonZero(r.labels()), 0);
   CameraIntrinsics bad = camera();
   bad.fx = 0;
