@@ -49,6 +49,16 @@ cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsi
   return renderer.depth().clone();
 }
 
+CameraIntrinsics smallCamera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 200;
+  k.cx = 79.5;
+  k.cy = 59.5;
+  k.width = 160;
+  k.height = 120;
+  return k;
+}
+
 Eigen::Isometry3f viewingPose(float distance) {
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
   pose.linear() = (Eigen::AngleAxisf(2.5f, Eigen::Vector3f::UnitX()) *

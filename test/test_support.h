@@ -47,6 +47,9 @@ struct PlacedMesh {
 cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsics& camera,
                     cv::Mat* labels = nullptr);
 
+/// A 160 x 120 camera with a 200 px focal length, for small renders.
+CameraIntrinsics smallCamera();
+
 /// A pose looking at an object `distance` metres in front of the camera, tilted so that three faces
 /// of a box show.
 Eigen::Isometry3f viewingPose(float distance);
