@@ -13,6 +13,9 @@
 
 namespace stocs {
 
+/// 640 x 480 with the focal length and principal point of a typical RealSense or Kinect.
+CameraIntrinsics defaultSynthCamera();
+
 struct SyntheticFrame {
   cv::Mat depth;        ///< CV_32FC1, metres, 0 = no measurement, with the sensor's errors
   cv::Mat exact_depth;  ///< CV_32FC1, metres, as rendered

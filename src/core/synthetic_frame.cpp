@@ -44,6 +44,16 @@ MeshData tableTop() {
 
 }  // namespace
 
+CameraIntrinsics defaultSynthCamera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 615.0;
+  k.cx = 319.5;
+  k.cy = 239.5;
+  k.width = 640;
+  k.height = 480;
+  return k;
+}
+
 SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,
                                     const std::vector<cv::Vec3b>& colours,
                                     const Eigen::Isometry3f& camera_pose,
