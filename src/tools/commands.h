@@ -14,6 +14,8 @@ struct Command {
 
 Command registerEstimate(CLI::App& app);
 Command registerPrepare(CLI::App& app);
+Command registerSimstats(CLI::App& app);
 Command registerMeshes(CLI::App& app);
+Command registerSynth(CLI::App& app);
 
 }  // namespace stocs::tools

@@ -11,9 +11,10 @@ int main(int argc, char** argv) {
   CLI::App app{"stocs: 6D object pose estimation with Stochastic Congruent Sets (BMVC 2018)"};
   app.require_subcommand(1);
   app.option_defaults()->always_capture_default();
-  const std::vector<stocs::tools::Command> commands = {stocs::tools::registerEstimate(app),
-                                                       stocs::tools::registerPrepare(app),
-                                                       stocs::tools::registerMeshes(app)};
+  const std::vector<stocs::tools::Command> commands = {
+      stocs::tools::registerEstimate(app), stocs::tools::registerPrepare(app),
+      stocs::tools::registerSimstats(app), stocs::tools::registerMeshes(app),
+      stocs::tools::registerSynth(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const stocs::tools::Command& command : commands) {
