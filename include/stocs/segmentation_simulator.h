@@ -3,7 +3,7 @@
 // from a frame's visible instance masks: missed regions, bleeding over object outlines, confident
 // false positives on neighbouring objects and on pixels that look like the target, and smooth
 // low-level noise. The paper's network lost recall from 95.3% on synthetic to 77.9% on real images;
-// named presets span that range (their measured precision and recall are in BENCHMARKS.md).
+// named presets span that range (their measured precision and recall are in docs/simulator.md).
 
 #include <cstdint>
 #include <string>

@@ -61,27 +61,36 @@ void writeImage(const fs::path& file, const cv::Mat& image) {
   }
 }
 
-/// The dataset's models: copied from a folder, or the catalogue written out.
-void writeModelsFolder(const fs::path& models, const fs::path& source) {
+/// The files of a BOP models folder that a dataset needs (obj_*.ply, models_info.json), checked
+/// before anything is written.
+std::vector<fs::path> modelFiles(const fs::path& source) {
+  std::error_code ec;
+  if (!fs::is_directory(source, ec)) {
+    throw InputError(fmt::format("synth: models {}: not a folder", source.string()));
+  }
+  std::vector<fs::path> files;
+  bool any_model = false;
+  for (const fs::directory_entry& e : fs::directory_iterator(source)) {
+    const std::string name = e.path().filename().string();
+    const bool model = name.rfind("obj_", 0) == 0 && e.path().extension() == ".ply";
+    if (model || name == "models_info.json") files.push_back(e.path());
+    any_model |= model;
+  }
+  if (!any_model) {
+    throw InputError(fmt::format("synth: models {}: no obj_*.ply files", source.string()));
+  }
+  return files;
+}
+
+/// The dataset's models: the given files copied, or the catalogue written out when there are none.
+void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& files) {
   fs::create_directories(models);
-  if (source.empty()) {
+  if (files.empty()) {
     writeModels(models, objectCatalogue());
     return;
   }
-  if (!fs::is_directory(source)) {
-    throw InputError(fmt::format("models {}: not a folder", source.string()));
-  }
-  int copied = 0;
-  for (const fs::directory_entry& e : fs::directory_iterator(source)) {
-    const std::string name = e.path().filename().string();
-    if (name == "models_info.json" ||
-        (name.rfind("obj_", 0) == 0 && e.path().extension() == ".ply")) {
-      fs::copy_file(e.path(), models / name, fs::copy_options::overwrite_existing);
-      copied += name != "models_info.json";
-    }
-  }
-  if (copied == 0) {
-    throw InputError(fmt::format("models {}: no obj_*.ply files", source.string()));
+  for (const fs::path& file : files) {
+    fs::copy_file(file, models / file.filename(), fs::copy_options::overwrite_existing);
   }
 }
 
@@ -111,7 +120,16 @@ void SyntheticDatasetParams::validate() const {
                     "scenes, {} images)",
                     scenes, images_per_scene));
   }
-  if (!camera.valid()) throw InputError("synth: camera intrinsics are invalid");
+  if (layout.objects < 1) {
+    throw InputError(
+        fmt::format("synth: needs at least one object per scene (got {})", layout.objects));
+  }
+  if (!camera.valid()) {
+    throw InputError(fmt::format(
+        "synth: camera intrinsics are invalid (width {}, height {}, fx {}, fy {}: all must be "
+        "positive)",
+        camera.width, camera.height, camera.fx, camera.fy));
+  }
   if (!(depth_noise_level >= 0 && depth_noise_level <= 10)) {
     throw InputError(
         fmt::format("synth: depth noise level {} is outside [0, 10]", depth_noise_level));
@@ -126,12 +144,17 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
                            const fs::path& models_dir,
                            const std::function<void(const SyntheticImageReport&)>& progress) {
   params.validate();
+  const std::vector<fs::path> model_files =
+      models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
   std::error_code ec;
   if (fs::exists(root, ec) && !fs::is_empty(root, ec)) {
     throw InputError(fmt::format("synth: {} exists and is not empty", root.string()));
   }
-  fs::create_directories(root / "test");
-  writeModelsFolder(root / "models", models_dir);
+  fs::create_directories(root / "test", ec);
+  if (ec) {
+    throw InputError(fmt::format("synth: cannot create {}: {}", root.string(), ec.message()));
+  }
+  writeModelsFolder(root / "models", model_files);
   const BopDataset dataset(root);
   std::vector<std::pair<int, MeshData>> models;
   for (const auto& [id, info] : dataset.modelsInfo()) {

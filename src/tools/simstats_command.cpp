@@ -75,7 +75,7 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
   const std::string kinds = fmt::format("{}", fmt::join(mask_kinds, ", "));
   if (real.maps > 0) printRow(name, kinds, "real network maps", real);
   for (size_t p = 0; p < o.presets.size(); ++p) {
-    printRow(name, kinds, "sim:" + o.presets[p], simulated[p]);
+    printRow(name, kinds, "simulator, " + o.presets[p], simulated[p]);
   }
 }
 
