@@ -128,7 +128,7 @@ TEST_F(ProbabilitySourceTest, RenderedMasksMatchMaskVisibForMeshAndPointModels) 
 
 TEST(ProbabilitySourceRealData, RealNetworkMapsAgreeWithRenderedAndStoredMasks) {
   STOCS_REQUIRE_DATASETS(root);
-  // The packed dove: point models rendered as splats. Real map: 96.9% precision, 93.8% recall.
+  // The packed dove: point models rendered as splats. Real map: 96.9% precision, 93.2% recall.
   const BopDataset packed(root / "rutgers-packed");
   const GroundTruthMasks packed_masks(packed);
   EXPECT_FALSE(packed_masks.hasMaskVisib(0, 0, 16));
