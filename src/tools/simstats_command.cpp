@@ -1,6 +1,7 @@
 // `stocs simstats`: pixel precision and recall at a threshold of the segmentation simulator's
-// presets and of the dataset's real network maps, against the visible ground-truth masks, as one
-// markdown table (the preset calibration in BENCHMARKS.md).
+// presets and of the dataset's own prob/ maps (real network maps in ../shared/datasets), against
+// the visible ground-truth masks, as one markdown table (the preset calibration in
+// docs/simulator.md).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -73,7 +74,7 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
     }
   }
   const std::string kinds = fmt::format("{}", fmt::join(mask_kinds, ", "));
-  if (real.maps > 0) printRow(name, kinds, "real network maps", real);
+  if (real.maps > 0) printRow(name, kinds, "dataset's prob/ maps", real);
   for (size_t p = 0; p < o.presets.size(); ++p) {
     printRow(name, kinds, "simulator, " + o.presets[p], simulated[p]);
   }
@@ -93,8 +94,8 @@ Command registerSimstats(CLI::App& app) {
   auto o = std::make_shared<SimstatsOptions>();
   CLI::App* cmd = app.add_subcommand(
       "simstats",
-      "Pixel precision and recall of the segmentation simulator's presets and of real network "
-      "maps against the visible ground-truth masks");
+      "Pixel precision and recall of the segmentation simulator's presets and of the dataset's "
+      "prob/ maps against the visible ground-truth masks");
   cmd->add_option("--dataset", o->datasets, "BOP dataset folder (repeatable)")->required();
   cmd->add_option("--presets", o->presets, "Simulator presets, comma-separated")->delimiter(',');
   cmd->add_option("--seeds", o->seeds, "Simulated maps per object: seeds 1..N")

@@ -1,5 +1,5 @@
-// `stocs synth` and `stocs meshes` end to end: a generated scene that `stocs estimate` solves, and
-// error exits.
+// `stocs synth`, `stocs simstats` and `stocs meshes` end to end: a generated scene that
+// `stocs estimate` solves, presets ranked by simstats, and error exits.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -109,6 +109,40 @@ TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
                              out),
             2);
   EXPECT_NE(out.find("unknown segmentation preset 'grainy'"), std::string::npos) << out;
+}
+
+/// The recall column of the simstats row for `source`, percent; -1 when there is no such row.
+double simstatsRecall(const std::string& table, const std::string& source) {
+  const size_t row = table.find("| " + source + " |");
+  if (row == std::string::npos) return -1;
+  const std::string line = table.substr(row, table.find('\n', row) - row);
+  const size_t last = line.rfind('|', line.size() - 2);
+  return std::stod(line.substr(last + 1));
+}
+
+TEST(CliSynth, SimstatsRanksThePresetsOnAGeneratedDataset) {
+  const auto root = test::scratchDir("simstats");
+  const std::string data = (root / "d").string();
+  std::string out;
+  ASSERT_EQ(test::runCommand(kTool + " synth --out " + data + " --objects 3 --quiet", out), 0)
+      << out;
+  ASSERT_EQ(test::runCommand(kTool + " simstats --dataset " + data + " --seeds 2", out), 0) << out;
+  // synth's prob/ maps are the mild preset with other seeds.
+  std::vector<double> recall;
+  for (const char* source :
+       {"simulator, clean", "dataset's prob/ maps", "simulator, noisy", "simulator, very-noisy"}) {
+    recall.push_back(simstatsRecall(out, source));
+    ASSERT_GE(recall.back(), 0) << source << " missing from:\n" << out;
+  }
+  EXPECT_GT(recall[0], 98) << out;
+  for (size_t k = 1; k < recall.size(); ++k) EXPECT_LT(recall[k], recall[k - 1]) << out;
+  EXPECT_NE(out.find("| d | mask_visib |"), std::string::npos) << out;
+
+  EXPECT_EQ(
+      test::runCommand(kTool + " simstats --dataset " + data + " --presets clean,grainy", out), 2);
+  EXPECT_NE(out.find("unknown segmentation preset 'grainy'"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(kTool + " simstats --dataset " + (root / "none").string(), out), 2);
+  EXPECT_NE(out.find("not a folder"), std::string::npos) << out;
 }
 
 TEST(CliSynth, MeshesWritesTheCatalogue) {
