@@ -40,57 +40,6 @@ std::filesystem::path scratchDir(const std::string& name) {
   return dir;
 }
 
-MeshData boxMesh(const Eigen::Vector3f& size) {
-  MeshData m;
-  const Eigen::Vector3f h = size / 2;
-  for (int i = 0; i < 8; ++i) {
-    m.vertices.emplace_back((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(),
-                            (i & 4) ? h.z() : -h.z());
-  }
-  // Each face as a quad of corner indices in counter-clockwise order seen from outside.
-  const int quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
-                           {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  for (const auto& q : quads) {
-    m.triangles.emplace_back(q[0], q[1], q[2]);
-    m.triangles.emplace_back(q[0], q[2], q[3]);
-  }
-  return m;
-}
-
-MeshData latheMesh(const std::vector<Eigen::Vector2f>& profile, int segments) {
-  MeshData m;
-  const int rings = static_cast<int>(profile.size());
-  for (const Eigen::Vector2f& rz : profile) {
-    for (int s = 0; s < segments; ++s) {
-      const float a = 2.0f * static_cast<float>(M_PI) * s / segments;
-      m.vertices.emplace_back(rz.x() * std::cos(a), rz.x() * std::sin(a), rz.y());
-    }
-  }
-  for (int r = 0; r + 1 < rings; ++r) {
-    for (int s = 0; s < segments; ++s) {
-      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
-      const int c = (r + 1) * segments + (s + 1) % segments, d = (r + 1) * segments + s;
-      m.triangles.emplace_back(a, b, c);
-      m.triangles.emplace_back(a, c, d);
-    }
-  }
-  return m;
-}
-
-void writePly(const std::filesystem::path& file, const MeshData& mesh, float scale) {
-  std::ofstream out(file);
-  out << "ply\nformat ascii 1.0\nelement vertex " << mesh.vertices.size()
-      << "\nproperty float x\nproperty float y\nproperty float z\n";
-  if (!mesh.triangles.empty()) {
-    out << "element face " << mesh.triangles.size() << "\nproperty list uchar int vertex_indices\n";
-  }
-  out << "end_header\n";
-  for (const Eigen::Vector3f& v : mesh.vertices)
-    out << v.x() * scale << ' ' << v.y() * scale << ' ' << v.z() * scale << '\n';
-  for (const Eigen::Vector3i& t : mesh.triangles)
-    out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-}
-
 cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsics& camera,
                     cv::Mat* labels) {
   DepthRenderer renderer(camera);
@@ -100,15 +49,14 @@ cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsi
   return renderer.depth().clone();
 }
 
-MeshData asymmetricMesh() {
-  MeshData base = boxMesh({0.1f, 0.06f, 0.04f});
-  const MeshData block = boxMesh({0.04f, 0.04f, 0.03f});
-  const int offset = static_cast<int>(base.vertices.size());
-  for (const Eigen::Vector3f& v : block.vertices)
-    base.vertices.push_back(v + Eigen::Vector3f(0.03f, 0.01f, 0.035f));
-  for (const Eigen::Vector3i& t : block.triangles)
-    base.triangles.push_back(t + Eigen::Vector3i::Constant(offset));
-  return base;
+CameraIntrinsics smallCamera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 200;
+  k.cx = 79.5;
+  k.cy = 59.5;
+  k.width = 160;
+  k.height = 120;
+  return k;
 }
 
 CameraIntrinsics testCamera() {

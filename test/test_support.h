@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the tests: the real-data folder and small synthetic shapes with exact normals.
+// Helpers shared by the tests: the real-data folder, scratch folders, rendering and a generated
+// one-image dataset. Shapes come from the core (shape_meshes.h, object_catalogue.h).
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,9 @@
 
 #include "stocs/camera.h"
 #include "stocs/mesh.h"
+#include "stocs/object_catalogue.h"
+#include "stocs/ply_writer.h"
+#include "stocs/shape_meshes.h"
 
 namespace cv {
 class Mat;
@@ -32,14 +36,6 @@ std::filesystem::path datasetsDir();
 /// exists).
 std::filesystem::path scratchDir(const std::string& name);
 
-/// Closed triangle mesh of an axis-aligned box centred at the origin (outward winding).
-MeshData boxMesh(const Eigen::Vector3f& size);
-
-/// Closed mesh of a surface of revolution about z through the (r, z) profile points (first and last
-/// radius 0 close the ends), with `segments` around. Outward winding for a profile going upward on
-/// the outside.
-MeshData latheMesh(const std::vector<Eigen::Vector2f>& profile, int segments);
-
 struct PlacedMesh {
   MeshData mesh;
   Eigen::Isometry3f pose;  ///< mesh frame to camera
@@ -51,9 +47,8 @@ struct PlacedMesh {
 cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsics& camera,
                     cv::Mat* labels = nullptr);
 
-/// An asymmetric test object: a 10 x 6 x 4 cm box with a 4 x 4 x 3 cm block on one corner of its
-/// top.
-MeshData asymmetricMesh();
+/// A 160 x 120 camera with a 200 px focal length, for small renders.
+CameraIntrinsics smallCamera();
 
 /// The 320 x 240 pinhole camera (f = 300 px) of the rendered test scenes.
 CameraIntrinsics testCamera();
@@ -68,8 +63,5 @@ Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root);
 
 /// Runs a shell command, returning its exit code and capturing stdout and stderr in `output`.
 int runCommand(const std::string& command, std::string& output);
-
-/// Writes an ascii PLY with vertices (and faces when the mesh has triangles).
-void writePly(const std::filesystem::path& file, const MeshData& mesh, float scale = 1.0f);
 
 }  // namespace stocs::test

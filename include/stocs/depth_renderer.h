@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "stocs/camera.h"
 #include "stocs/mesh.h"
@@ -20,6 +21,12 @@ class DepthRenderer {
   /// camera) with `label` (> 0). Nearer surfaces hide farther ones whatever the drawing order.
   /// Triangles with a vertex closer than 1 cm to the camera plane are skipped.
   void draw(const MeshData& mesh, const Eigen::Isometry3f& pose, int label);
+
+  /// Adds a model without faces (BOP point models): each point covers a square of half-side
+  /// `radius` metres at its depth (at least its own pixel), with the normal facing the camera. A
+  /// radius near the point spacing closes the surface.
+  void drawPoints(const std::vector<Eigen::Vector3f>& points, const Eigen::Isometry3f& pose,
+                  float radius, int label);
 
   /// Depth along the optical axis (CV_32FC1, metres, 0 where nothing was drawn).
   const cv::Mat& depth() const { return depth_; }

@@ -25,8 +25,14 @@ class ProbabilitySource {
   virtual cv::Mat load(int scene_id, int im_id, int obj_id) const = 0;
 };
 
-/// "real": the dataset's prob/ maps only. Throws InputError for an unknown spec, listing the known
-/// ones. `seed` makes simulated maps reproducible.
+/// What the specs mean, for help texts.
+std::string probabilitySourceHelp();
+
+/// "real": the dataset's prob/ maps only; "sim:PRESET": the real map where prob/ has one, else the
+/// segmentation simulator with that preset on the frame's visible ground-truth masks (see
+/// GroundTruthMasks); "simonly:PRESET": always simulated. Throws InputError for an unknown spec or
+/// preset, listing the known ones. `seed` makes simulated maps reproducible; the source keeps the
+/// last frame's masks, so it is not for use from several threads at once.
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed);
 

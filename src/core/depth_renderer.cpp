@@ -14,8 +14,11 @@ DepthRenderer::DepthRenderer(const CameraIntrinsics& camera) : camera_(camera) {
   normals_ = cv::Mat(camera.height, camera.width, CV_32FC3, cv::Scalar(0, 0, 0));
 }
 
+namespace {
+constexpr float kNear = 0.01f;
+}  // namespace
+
 void DepthRenderer::draw(const MeshData& mesh, const Eigen::Isometry3f& pose, int label) {
-  constexpr float kNear = 0.01f;
   std::vector<Eigen::Vector3f> cam(mesh.vertices.size());
   std::vector<Eigen::Vector2f> px(mesh.vertices.size());
   for (size_t i = 0; i < mesh.vertices.size(); ++i) {
@@ -56,6 +59,37 @@ void DepthRenderer::draw(const MeshData& mesh, const Eigen::Isometry3f& pose, in
         labels_.at<int>(v, u) = label;
         normals_.at<cv::Vec3f>(v, u) = cv::Vec3f(normal.x(), normal.y(), normal.z());
       }
+    }
+  }
+}
+
+void DepthRenderer::drawPoints(const std::vector<Eigen::Vector3f>& points,
+                               const Eigen::Isometry3f& pose, float radius, int label) {
+  for (const Eigen::Vector3f& model_point : points) {
+    const Eigen::Vector3f p = pose * model_point;
+    if (p.z() < kNear) continue;
+    const Eigen::Vector2f c = camera_.project(p);
+    const float ru = static_cast<float>(radius * camera_.fx / p.z());
+    const float rv = static_cast<float>(radius * camera_.fy / p.z());
+    const int u0 = std::max(0, static_cast<int>(std::ceil(c.x() - ru)));
+    const int u1 = std::min(camera_.width - 1, static_cast<int>(std::floor(c.x() + ru)));
+    const int v0 = std::max(0, static_cast<int>(std::ceil(c.y() - rv)));
+    const int v1 = std::min(camera_.height - 1, static_cast<int>(std::floor(c.y() + rv)));
+    const Eigen::Vector3f to_camera = -p.normalized();
+    const auto splat = [&](int u, int v) {
+      float& d = depth_.at<float>(v, u);
+      if (d != 0 && d <= p.z()) return;
+      d = p.z();
+      labels_.at<int>(v, u) = label;
+      normals_.at<cv::Vec3f>(v, u) = cv::Vec3f(to_camera.x(), to_camera.y(), to_camera.z());
+    };
+    if (u0 > u1 || v0 > v1) {  // smaller than a pixel: its own pixel
+      const int u = static_cast<int>(std::lround(c.x())), v = static_cast<int>(std::lround(c.y()));
+      if (u >= 0 && v >= 0 && u < camera_.width && v < camera_.height) splat(u, v);
+      continue;
+    }
+    for (int v = v0; v <= v1; ++v) {
+      for (int u = u0; u <= u1; ++u) splat(u, v);
     }
   }
 }

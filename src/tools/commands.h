@@ -17,5 +17,8 @@ Command registerEval(CLI::App& app);
 Command registerBench(CLI::App& app);
 Command registerPrepare(CLI::App& app);
 Command registerOverlay(CLI::App& app);
+Command registerSimstats(CLI::App& app);
+Command registerMeshes(CLI::App& app);
+Command registerSynth(CLI::App& app);
 
 }  // namespace stocs::tools

@@ -204,7 +204,7 @@ Command registerEstimate(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "off"}));
   cmd->add_option("--method", o->method,
                   "Pose estimation method: " + fmt::format("{}", fmt::join(methodNames(), ", ")));
-  cmd->add_option("--prob", o->prob, "Probability maps: 'real' (the dataset's prob/ maps)");
+  cmd->add_option("--prob", o->prob, "Probability maps: " + probabilitySourceHelp());
   cmd->add_option("--hard-threshold", o->method_options.hard_threshold,
                   "Probability threshold of the hard segment for methods that need one");
   addModelOptions(*cmd, o->model);

@@ -13,8 +13,9 @@ int main(int argc, char** argv) {
   app.option_defaults()->always_capture_default();
   const std::vector<stocs::tools::Command> commands = {
       stocs::tools::registerEstimate(app), stocs::tools::registerPrepare(app),
-      stocs::tools::registerEval(app), stocs::tools::registerBench(app),
-      stocs::tools::registerOverlay(app)};
+      stocs::tools::registerEval(app),     stocs::tools::registerBench(app),
+      stocs::tools::registerOverlay(app),  stocs::tools::registerSimstats(app),
+      stocs::tools::registerMeshes(app),   stocs::tools::registerSynth(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const stocs::tools::Command& command : commands) {

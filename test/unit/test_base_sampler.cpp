@@ -15,7 +15,7 @@ namespace {
 class BaseSamplerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    model_ = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+    model_ = prepareModel(asymmetricMesh(), ModelSamplingParams{});
     map_ = PpfHashMap::build(model_, PpfParams{});
     // The scene is the model itself, seen at a pose: every pair is on the model.
     const Eigen::Isometry3f pose = test::viewingPose(0.6f);

@@ -16,7 +16,7 @@ namespace {
 class CongruentSetTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    model_.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+    model_.model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
     model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
     pose_ = test::viewingPose(0.6f);
   }

@@ -3,20 +3,11 @@
 
 #include "stocs/depth_renderer.h"
 #include "stocs/error.h"
+#include "stocs/surface_sampling.h"
 #include "test_support.h"
 
 namespace stocs {
 namespace {
-
-CameraIntrinsics camera() {
-  CameraIntrinsics k;
-  k.fx = k.fy = 200;
-  k.cx = 79.5;
-  k.cy = 59.5;
-  k.width = 160;
-  k.height = 120;
-  return k;
-}
 
 Eigen::Isometry3f at(float x, float y, float z) {
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
@@ -25,9 +16,9 @@ Eigen::Isometry3f at(float x, float y, float z) {
 }
 
 TEST(DepthRenderer, AFrontoParallelBoxFaceHasItsDepthAndProjectedArea) {
-  DepthRenderer r(camera());
+  DepthRenderer r(test::smallCamera());
   // A 10 x 10 x 2 cm box whose front face is at z = 1 m - 1 cm.
-  r.draw(test::boxMesh({0.1f, 0.1f, 0.02f}), at(0, 0, 1.0f), 7);
+  r.draw(boxMesh({0.1f, 0.1f, 0.02f}), at(0, 0, 1.0f), 7);
   EXPECT_NEAR(r.depth().at<float>(60, 80), 0.99f, 1e-5f);
   EXPECT_EQ(r.labels().at<int>(60, 80), 7);
   const cv::Vec3f n = r.normals().at<cv::Vec3f>(60, 80);
@@ -39,10 +30,10 @@ TEST(DepthRenderer, AFrontoParallelBoxFaceHasItsDepthAndProjectedArea) {
 }
 
 TEST(DepthRenderer, DepthIsPerspectiveCorrectOnASlantedFace) {
-  DepthRenderer r(camera());
+  DepthRenderer r(test::smallCamera());
   Eigen::Isometry3f pose = at(0, 0, 1.0f);
   pose.linear() = Eigen::AngleAxisf(0.5f, Eigen::Vector3f::UnitY()).toRotationMatrix();
-  const MeshData box = test::boxMesh({0.2f, 0.2f, 0.02f});
+  const MeshData box = boxMesh({0.2f, 0.2f, 0.02f});
   r.draw(box, pose, 1);
   // The front face is the plane n.x = d with n = R z (facing -z after the flip) through R
   // (0,0,-0.01) + t.
@@ -58,8 +49,8 @@ TEST(DepthRenderer, DepthIsPerspectiveCorrectOnASlantedFace) {
 
 TEST(DepthRenderer, NearerObjectsHideFartherOnesInAnyOrder) {
   for (bool near_first : {true, false}) {
-    DepthRenderer r(camera());
-    const MeshData box = test::boxMesh({0.1f, 0.1f, 0.02f});
+    DepthRenderer r(test::smallCamera());
+    const MeshData box = boxMesh({0.1f, 0.1f, 0.02f});
     if (near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
     r.draw(box, at(0, 0, 1.0f), 1);
     if (!near_first) r.draw(box, at(0.02f, 0, 0.8f), 2);
@@ -69,11 +60,30 @@ TEST(DepthRenderer, NearerObjectsHideFartherOnesInAnyOrder) {
   }
 }
 
+TEST(DepthRenderer, PointModelsSplatToTheMeshSilhouetteAndDepth) {
+  const MeshData box = boxMesh({0.1f, 0.06f, 0.04f});
+  Rng rng(1);
+  const OrientedPoints dense = sampleMeshSurface(box, 20000, rng);  // about 1 mm apart
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);           // 3 mm per pixel
+  DepthRenderer mesh(test::smallCamera()), points(test::smallCamera());
+  mesh.draw(box, pose, 1);
+  points.drawPoints(dense.points, pose, 0.0015f, 1);
+  const cv::Mat a = mesh.labels() == 1, b = points.labels() == 1;
+  const double iou = static_cast<double>(cv::countNonZero(a & b)) / cv::countNonZero(a | b);
+  EXPECT_GT(iou, 0.9);  // the silhouettes differ by at most a pixel along the outline
+  EXPECT_GT(cv::countNonZero(a), 500);
+  cv::Mat difference;
+  cv::absdiff(mesh.depth(), points.depth(), difference);
+  // A splat is flat at its point's depth: on faces slanted by up to 60 degrees that is off by up
+  // to a pixel footprint's depth change.
+  EXPECT_LT(cv::mean(difference, a & b)[0], 0.003);
+}
+
 TEST(DepthRenderer, GeometryBehindTheCameraIsSkipped) {
-  DepthRenderer r(camera());
-  r.draw(test::boxMesh({0.1f, 0.1f, 0.1f}), at(0, 0, -1.0f), 1);
+  DepthRenderer r(test::smallCamera());
+  r.draw(boxMesh({0.1f, 0.1f, 0.1f}), at(0, 0, -1.0f), 1);
   EXPECT_EQ(cv::countNonZero(r.labels()), 0);
-  CameraIntrinsics bad = camera();
+  CameraIntrinsics bad = test::smallCamera();
   bad.fx = 0;
   EXPECT_THROW(DepthRenderer{bad}, InputError);
 }

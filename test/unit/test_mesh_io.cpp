@@ -25,7 +25,7 @@ std::string errorOf(const std::filesystem::path& file, float scale = 0.001f) {
 
 TEST(MeshIo, ReadsAnAsciiMeshInMillimetres) {
   const auto dir = test::scratchDir("mesh_io_ascii");
-  test::writePly(dir / "box.ply", test::boxMesh({100, 60, 40}));
+  writePly(dir / "box.ply", boxMesh({100, 60, 40}));
   const MeshData m = loadMesh((dir / "box.ply").string(), 0.001f);
   ASSERT_EQ(m.vertices.size(), 8u);
   ASSERT_EQ(m.triangles.size(), 12u);
@@ -35,9 +35,9 @@ TEST(MeshIo, ReadsAnAsciiMeshInMillimetres) {
 
 TEST(MeshIo, ReadsPointsOnlyPlyAndPcd) {
   const auto dir = test::scratchDir("mesh_io_points");
-  MeshData box = test::boxMesh({0.1f, 0.06f, 0.04f});
+  MeshData box = boxMesh({0.1f, 0.06f, 0.04f});
   box.triangles.clear();
-  test::writePly(dir / "points.ply", box);
+  writePly(dir / "points.ply", box);
   EXPECT_EQ(loadMesh((dir / "points.ply").string(), 1.0f).vertices.size(), 8u);
   writeText(dir / "points.pcd",
             "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH "
@@ -74,11 +74,11 @@ TEST(MeshIo, BadFilesGiveErrorsNamingTheFileAndProblem) {
 
 TEST(MeshIo, UnitMistakesAreCaught) {
   const auto dir = test::scratchDir("mesh_io_units");
-  test::writePly(dir / "box_mm.ply", test::boxMesh({100, 60, 40}));
+  writePly(dir / "box_mm.ply", boxMesh({100, 60, 40}));
   // A millimetre model declared as metres is 100 m long.
   EXPECT_NE(errorOf(dir / "box_mm.ply", 1.0f).find("unit scale"), std::string::npos);
   // A metre model declared as millimetres is 0.1 mm long.
-  test::writePly(dir / "box_m.ply", test::boxMesh({0.1f, 0.06f, 0.04f}));
+  writePly(dir / "box_m.ply", boxMesh({0.1f, 0.06f, 0.04f}));
   EXPECT_NE(errorOf(dir / "box_m.ply", 0.001f).find("unit scale"), std::string::npos);
   EXPECT_NE(errorOf(dir / "box_m.ply", -1.0f).find("positive"), std::string::npos);
 }

@@ -15,7 +15,7 @@ class ModelCacheTest : public ::testing::Test {
   void SetUp() override {
     dir_ = test::scratchDir("model_cache");
     model_file_ = (dir_ / "box.ply").string();
-    test::writePly(model_file_, test::boxMesh({100, 60, 40}));
+    writePly(model_file_, boxMesh({100, 60, 40}));
   }
 
   void expectSameModel(const PreparedModel& a, const PreparedModel& b) {

@@ -28,7 +28,7 @@ std::vector<Eigen::Vector2f> bowlProfile() {
 }
 
 TEST(ObjectModel, MeshSamplesAreEvenAndFaceOutwardOnABox) {
-  const ObjectModel m = prepareModel(test::boxMesh({0.1f, 0.06f, 0.04f}), ModelSamplingParams{});
+  const ObjectModel m = prepareModel(boxMesh({0.1f, 0.06f, 0.04f}), ModelSamplingParams{});
   EXPECT_NEAR(m.diameter, std::sqrt(0.01f + 0.0036f + 0.0016f), 1e-4f);
   EXPECT_NEAR(m.sampling_radius, 0.04f * m.diameter, 1e-6f);
   ASSERT_GT(m.size(), 200u);
@@ -42,7 +42,7 @@ TEST(ObjectModel, MeshSamplesAreEvenAndFaceOutwardOnABox) {
 }
 
 TEST(ObjectModel, MeshWoundInsideOutIsFlippedAsAWhole) {
-  MeshData mesh = test::boxMesh({0.1f, 0.06f, 0.04f});
+  MeshData mesh = boxMesh({0.1f, 0.06f, 0.04f});
   for (Eigen::Vector3i& t : mesh.triangles) std::swap(t[1], t[2]);
   const ObjectModel m = prepareModel(mesh, ModelSamplingParams{});
   for (size_t i = 0; i < m.size(); ++i) ASSERT_GT(m.normals[i].dot(m.points[i]), 0);
@@ -50,7 +50,7 @@ TEST(ObjectModel, MeshWoundInsideOutIsFlippedAsAWhole) {
 
 TEST(ObjectModel, PointModelNormalsFaceOutOfTheSolidOfAConcaveBowl) {
   // Only the vertices: a dense point model without faces, as BOP point models are.
-  MeshData mesh = test::latheMesh(bowlProfile(), 160);
+  MeshData mesh = latheMesh(bowlProfile(), 160);
   Rng rng(1);
   const OrientedPoints dense = sampleMeshSurface(mesh, 30000, rng);
   MeshData points_only;
@@ -78,7 +78,7 @@ TEST(ObjectModel, PointModelNormalsFaceOutOfTheSolidOfAConcaveBowl) {
 
 TEST(ObjectModel, TheCentroidRuleWouldFailOnTheBowl) {
   // Guards the test above: flipping away from the centroid gets the inner surface wrong.
-  MeshData mesh = test::latheMesh(bowlProfile(), 160);
+  MeshData mesh = latheMesh(bowlProfile(), 160);
   Rng rng(1);
   const OrientedPoints dense = sampleMeshSurface(mesh, 5000, rng);
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
@@ -100,7 +100,7 @@ TEST(ObjectModel, TheCentroidRuleWouldFailOnTheBowl) {
 TEST(ObjectModel, InvalidParametersAreRejected) {
   ModelSamplingParams p;
   p.sampling_ratio = 0;
-  EXPECT_THROW(prepareModel(test::boxMesh({0.1f, 0.1f, 0.1f}), p), InputError);
+  EXPECT_THROW(prepareModel(boxMesh({0.1f, 0.1f, 0.1f}), p), InputError);
   EXPECT_THROW(prepareModel(MeshData{}, ModelSamplingParams{}), InputError);
 }
 

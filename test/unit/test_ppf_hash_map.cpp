@@ -17,7 +17,7 @@ class PpfHashMapTest : public ::testing::Test {
   void SetUp() override {
     ModelSamplingParams sampling;
     sampling.sampling_ratio = 0.08f;
-    model_ = prepareModel(test::boxMesh({0.1f, 0.06f, 0.04f}), sampling);
+    model_ = prepareModel(boxMesh({0.1f, 0.06f, 0.04f}), sampling);
     map_ = PpfHashMap::build(model_, params_);
   }
   PpfParams params_;

@@ -21,8 +21,7 @@ class StocsEstimatorTest : public ::testing::Test {
     table.translation() = Eigen::Vector3f(0, 0, 0.68f);
     cv::Mat labels;
     const cv::Mat depth = test::renderDepth(
-        {{test::asymmetricMesh(), truth_}, {test::boxMesh({0.5f, 0.4f, 0.01f}), table}}, camera_,
-        &labels);
+        {{asymmetricMesh(), truth_}, {boxMesh({0.5f, 0.4f, 0.01f}), table}}, camera_, &labels);
     cloud_ = cloudFromDepth(depth, camera_, 1.0);
     // A soft segmentation that bleeds onto the table with a moderate probability.
     probability_ = cv::Mat(240, 320, CV_32FC1, cv::Scalar(0));
@@ -34,7 +33,7 @@ class StocsEstimatorTest : public ::testing::Test {
                    : (l == 2 && std::abs(u - 170) < 70 && std::abs(v - 120) < 60 ? 0.3f : 0.0f);
       }
     }
-    model_.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+    model_.model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
     model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
   }
 

@@ -1,0 +1,54 @@
+#pragma once
+// Probability maps that behave like a segmentation CNN trained on synthetic data (issue 3), made
+// from a frame's visible instance masks: missed regions, bleeding over object outlines, confident
+// false positives on neighbouring objects and on pixels that look like the target, and smooth
+// low-level noise. The paper's network lost recall from 95.3% on synthetic to 77.9% on real images;
+// named presets span that range (their measured precision and recall are in docs/simulator.md).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace stocs {
+
+struct SegmentationNoiseParams {
+  float confidence = 1.0f;       ///< probability on an object pixel that is found
+  float missed_fraction = 0;     ///< mean share of the object's visible pixels that are missed
+  float missed_level = 0.1f;     ///< probability left in a missed region
+  float bleed_px = 0;            ///< spread of the map over the object's outline, pixels
+  float neighbour_fraction = 0;  ///< mean share of each nearby other object that fires
+  float lookalike_fraction = 0;  ///< share of the image where look-alike pixels may fire
+  /// Colour distance (RGB, 0..255) at which a pixel stops looking like the target: with an RGB
+  /// image look-alike firing is scaled by colour similarity, without one it falls on the
+  /// background.
+  float colour_tolerance = 40;
+  float false_positive_level = 0.8f;  ///< probability of a false-positive region
+  float blob_px = 14;                 ///< size of missed and false-positive regions, pixels
+  float noise = 0;                    ///< amplitude of the smooth low-level noise
+
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+/// Preset names from clean to very noisy.
+std::vector<std::string> segmentationPresetNames();
+
+/// A named preset; throws InputError for an unknown name, listing the known ones.
+SegmentationNoiseParams segmentationPreset(const std::string& name);
+
+/// What the simulator sees of a frame.
+struct SegmentationScene {
+  cv::Mat labels;            ///< CV_32SC1: 1 + index of the instance visible at a pixel, 0 for none
+  std::vector<int> obj_ids;  ///< object id of each instance
+  cv::Mat rgb;               ///< optional CV_8UC3 colour image of the same size
+};
+
+/// The simulated probability (CV_32FC1 in [0, 1]) of object `target_obj_id` at every pixel: the
+/// same for the same seed. Throws InputError for a label image that is not CV_32SC1, labels without
+/// an object id, or an RGB image of another size or type.
+cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
+                             const SegmentationNoiseParams& params, uint64_t seed);
+
+}  // namespace stocs

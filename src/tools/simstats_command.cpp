@@ -1,0 +1,108 @@
+// `stocs simstats`: pixel precision and recall at a threshold of the segmentation simulator's
+// presets and of the dataset's own prob/ maps (real network maps in ../shared/datasets), against
+// the visible ground-truth masks, as one markdown table (the preset calibration in
+// docs/simulator.md).
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <opencv2/core.hpp>
+#include <set>
+
+#include "commands.h"
+#include "stocs/bop_dataset.h"
+#include "stocs/ground_truth_masks.h"
+#include "stocs/probability_source.h"
+#include "stocs/segmentation_metrics.h"
+#include "stocs/segmentation_simulator.h"
+
+namespace stocs::tools {
+namespace {
+
+struct SimstatsOptions {
+  std::vector<std::string> datasets;
+  std::vector<std::string> presets = segmentationPresetNames();
+  int seeds = 3;
+  float threshold = 0.5f;
+};
+
+struct Row {
+  PixelCounts counts;
+  int maps = 0;
+};
+
+void printRow(const std::string& dataset, const std::string& masks, const std::string& source,
+              const Row& row) {
+  fmt::print("| {} | {} | {} | {} | {:.1f}% | {:.1f}% |\n", dataset, masks, source, row.maps,
+             100 * row.counts.precision(), 100 * row.counts.recall());
+}
+
+void measureDataset(const std::string& root, const SimstatsOptions& o) {
+  const BopDataset dataset(root);
+  const GroundTruthMasks masks(dataset);
+  const std::string name = std::filesystem::path(root).filename().string();
+  Row real;
+  std::vector<Row> simulated(o.presets.size());
+  std::set<std::string> mask_kinds;
+  std::vector<std::unique_ptr<ProbabilitySource>> sources;
+  for (int seed = 1; seed <= o.seeds; ++seed) {
+    for (const std::string& preset : o.presets) {
+      sources.push_back(makeProbabilitySource("simonly:" + preset, dataset, seed));
+    }
+  }
+  for (int scene : dataset.sceneIds()) {
+    for (const auto& [im, instances] : dataset.sceneGroundTruth(scene)) {
+      const SegmentationScene frame = masks.frame(scene, im);
+      mask_kinds.insert(masks.hasMaskVisib(scene, im, instances.size()) ? "mask_visib"
+                                                                        : "rendered");
+      const std::set<int> objects(frame.obj_ids.begin(), frame.obj_ids.end());
+      for (int obj : objects) {
+        cv::Mat target(frame.labels.size(), CV_8UC1, cv::Scalar(0));
+        for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
+          if (frame.obj_ids[i] == obj) target.setTo(255, frame.labels == static_cast<int>(i) + 1);
+        }
+        if (std::filesystem::exists(dataset.probabilityPath(scene, im, obj))) {
+          real.counts +=
+              countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold);
+          ++real.maps;
+        }
+        for (size_t s = 0; s < sources.size(); ++s) {
+          Row& row = simulated[s % o.presets.size()];
+          row.counts += countSegmentPixels(sources[s]->load(scene, im, obj), target, o.threshold);
+          ++row.maps;
+        }
+      }
+    }
+  }
+  const std::string kinds = fmt::format("{}", fmt::join(mask_kinds, ", "));
+  if (real.maps > 0) printRow(name, kinds, "dataset's prob/ maps", real);
+  for (size_t p = 0; p < o.presets.size(); ++p) {
+    printRow(name, kinds, "simulator, " + o.presets[p], simulated[p]);
+  }
+}
+
+int runSimstats(const SimstatsOptions& o) {
+  for (const std::string& preset : o.presets) segmentationPreset(preset);  // names checked first
+  fmt::print("| dataset | masks | maps from | maps | precision | recall |\n");
+  fmt::print("|---|---|---|---|---|---|\n");
+  for (const std::string& root : o.datasets) measureDataset(root, o);
+  return 0;
+}
+
+}  // namespace
+
+Command registerSimstats(CLI::App& app) {
+  auto o = std::make_shared<SimstatsOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "simstats",
+      "Pixel precision and recall of the segmentation simulator's presets and of the dataset's "
+      "prob/ maps against the visible ground-truth masks");
+  cmd->add_option("--dataset", o->datasets, "BOP dataset folder (repeatable)")->required();
+  cmd->add_option("--presets", o->presets, "Simulator presets, comma-separated")->delimiter(',');
+  cmd->add_option("--seeds", o->seeds, "Simulated maps per object: seeds 1..N")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--threshold", o->threshold, "Probability above which a pixel is in the segment")
+      ->check(CLI::Range(0.0, 1.0));
+  return {cmd, [o] { return runSimstats(*o); }};
+}
+
+}  // namespace stocs::tools

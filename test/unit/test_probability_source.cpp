@@ -1,0 +1,157 @@
+// Probability sources: real maps, the simulator on visible ground-truth masks (from mask_visib or
+// rendered from mesh and point models), and the real maps of ../shared/datasets against those
+// masks.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "stocs/error.h"
+#include "stocs/ground_truth_masks.h"
+#include "stocs/probability_source.h"
+#include "stocs/segmentation_metrics.h"
+#include "stocs/surface_sampling.h"
+#include "stocs/synthetic_dataset.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+namespace fs = std::filesystem;
+
+class ProbabilitySourceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = test::scratchDir("data");
+    SyntheticDatasetParams params;
+    params.layout.objects = 3;
+    params.layout.distractors = 1;
+    params.seed = 11;
+    writeSyntheticDataset(root_, params);
+    dataset_ = std::make_unique<BopDataset>(root_);
+    gt_ = dataset_->sceneGroundTruth(0).at(0);
+    ASSERT_EQ(gt_.size(), 3u);
+  }
+
+  /// The visible mask of every instance of `obj`, from mask_visib.
+  cv::Mat mask(int obj) const {
+    cv::Mat m(480, 640, CV_8UC1, cv::Scalar(0));
+    for (size_t i = 0; i < gt_.size(); ++i) {
+      if (gt_[i].obj_id != obj) continue;
+      m |= cv::imread(dataset_->maskVisibPath(0, 0, static_cast<int>(i)).string(),
+                      cv::IMREAD_GRAYSCALE);
+    }
+    return m;
+  }
+
+  fs::path root_;
+  std::unique_ptr<BopDataset> dataset_;
+  std::vector<BopGtInstance> gt_;
+};
+
+TEST_F(ProbabilitySourceTest, SimUsesRealMapsWhereTheyExistAndSimulatesElsewhere) {
+  const int kept = gt_[0].obj_id, removed = gt_[1].obj_id;
+  fs::remove(dataset_->probabilityPath(0, 0, removed));
+  const auto real = makeProbabilitySource("real", *dataset_, 1);
+  const auto sim = makeProbabilitySource("sim:clean", *dataset_, 1);
+  const auto simonly = makeProbabilitySource("simonly:clean", *dataset_, 1);
+  EXPECT_EQ(sim->spec(), "sim:clean");
+  EXPECT_TRUE(real->available(0, 0, kept));
+  EXPECT_FALSE(real->available(0, 0, removed));
+  EXPECT_TRUE(sim->available(0, 0, removed));
+  EXPECT_TRUE(simonly->available(0, 0, kept));
+  EXPECT_FALSE(sim->available(0, 0, 99));  // not in the frame's ground truth
+
+  const cv::Mat file = dataset_->loadProbability(0, 0, kept);
+  EXPECT_EQ(cv::norm(sim->load(0, 0, kept), file, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(simonly->load(0, 0, kept), file, cv::NORM_INF), 0.0);
+  for (int obj : {kept, removed}) {
+    const PixelCounts c = countSegmentPixels(simonly->load(0, 0, obj), mask(obj), 0.5f);
+    EXPECT_GT(c.recall(), 0.97) << obj;
+    EXPECT_GT(c.precision(), 0.9) << obj;
+  }
+  EXPECT_EQ(cv::norm(sim->load(0, 0, removed), simonly->load(0, 0, removed), cv::NORM_INF), 0.0);
+}
+
+TEST_F(ProbabilitySourceTest, SimulatedMapsDependOnTheSeedOnly) {
+  const int obj = gt_[2].obj_id;
+  const auto a = makeProbabilitySource("simonly:noisy", *dataset_, 5);
+  const auto b = makeProbabilitySource("simonly:noisy", *dataset_, 5);
+  const auto c = makeProbabilitySource("simonly:noisy", *dataset_, 6);
+  b->load(0, 0, gt_[0].obj_id);  // asking for another object first changes nothing
+  EXPECT_EQ(cv::norm(a->load(0, 0, obj), b->load(0, 0, obj), cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a->load(0, 0, obj), c->load(0, 0, obj), cv::NORM_INF), 0.0);
+}
+
+TEST_F(ProbabilitySourceTest, UnknownSourcesAndPresetsAreRefusedWithTheKnownOnes) {
+  try {
+    makeProbabilitySource("network", *dataset_, 0);
+    ADD_FAILURE() << "no exception";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("unknown probability source 'network'"), std::string::npos) << m;
+    EXPECT_NE(m.find("'sim:PRESET'"), std::string::npos) << m;
+  }
+  EXPECT_THROW(makeProbabilitySource("sim:grainy", *dataset_, 0), InputError);
+  EXPECT_THROW(makeProbabilitySource("simonly:", *dataset_, 0), InputError);
+}
+
+TEST_F(ProbabilitySourceTest, RenderedMasksMatchMaskVisibForMeshAndPointModels) {
+  const GroundTruthMasks masks(*dataset_);
+  EXPECT_TRUE(masks.hasMaskVisib(0, 0, gt_.size()));
+  const SegmentationScene from_files = masks.frame(0, 0);
+  fs::remove_all(dataset_->sceneDir(0) / "mask_visib");
+  EXPECT_FALSE(masks.hasMaskVisib(0, 0, gt_.size()));
+  const SegmentationScene from_meshes = masks.frame(0, 0);
+  ASSERT_EQ(from_meshes.obj_ids, from_files.obj_ids);
+  EXPECT_EQ(from_meshes.rgb.size(), from_files.labels.size());
+
+  // The same models as dense points only, as BOP point models are.
+  for (const BopGtInstance& g : gt_) {
+    const MeshData mesh = loadMesh(dataset_->modelPath(g.obj_id).string(), 0.001f);
+    Rng rng(1);
+    MeshData points;
+    points.vertices = sampleMeshSurface(mesh, 30000, rng).points;
+    writePly(dataset_->modelPath(g.obj_id), points, 1000.0f);
+  }
+  const SegmentationScene from_points = GroundTruthMasks(*dataset_).frame(0, 0);
+  for (size_t i = 0; i < gt_.size(); ++i) {
+    const int label = static_cast<int>(i) + 1;
+    const cv::Mat visible = from_files.labels == label;
+    // The generated scene has a distractor that the ground truth does not know: rendered masks
+    // may show more of an object than is visible, never less.
+    const cv::Mat meshes = from_meshes.labels == label, points_only = from_points.labels == label;
+    EXPECT_GT(cv::countNonZero(visible & meshes), 0.99 * cv::countNonZero(visible)) << i;
+    const double iou = static_cast<double>(cv::countNonZero(meshes & points_only)) /
+                       cv::countNonZero(meshes | points_only);
+    EXPECT_GT(iou, 0.9) << i;
+  }
+}
+
+TEST(ProbabilitySourceRealData, RealNetworkMapsAgreeWithRenderedAndStoredMasks) {
+  STOCS_REQUIRE_DATASETS(root);
+  // The packed dove: point models rendered as splats. Real map: 96.9% precision, 93.2% recall.
+  const BopDataset packed(root / "rutgers-packed");
+  const GroundTruthMasks packed_masks(packed);
+  EXPECT_FALSE(packed_masks.hasMaskVisib(0, 0, 16));
+  const SegmentationScene frame = packed_masks.frame(0, 0);
+  cv::Mat dove(frame.labels.size(), CV_8UC1, cv::Scalar(0));
+  for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
+    if (frame.obj_ids[i] == 1) dove.setTo(255, frame.labels == static_cast<int>(i) + 1);
+  }
+  const PixelCounts c = countSegmentPixels(packed.loadProbability(0, 0, 1), dove, 0.5f);
+  EXPECT_GT(c.precision(), 0.93);
+  EXPECT_GT(c.recall(), 0.9);
+
+  // YCB-Video frames carry mask_visib; the mild preset keeps most of every object.
+  const BopDataset ycbv(root / "ycbv-0000");
+  EXPECT_TRUE(GroundTruthMasks(ycbv).hasMaskVisib(0, 1, 3));
+  const auto sim = makeProbabilitySource("sim:mild", ycbv, 1);
+  const SegmentationScene ycb = GroundTruthMasks(ycbv).frame(0, 1);
+  for (size_t i = 0; i < ycb.obj_ids.size(); ++i) {
+    ASSERT_TRUE(sim->available(0, 1, ycb.obj_ids[i]));
+    const cv::Mat m = ycb.labels == static_cast<int>(i) + 1;
+    EXPECT_GT(countSegmentPixels(sim->load(0, 1, ycb.obj_ids[i]), m, 0.5f).recall(), 0.8);
+  }
+}
+
+}  // namespace
+}  // namespace stocs
