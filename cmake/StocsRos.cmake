@@ -30,13 +30,15 @@ add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)
 target_link_libraries(stocs_node PRIVATE stocs_ros)
 add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_main.cpp)
 target_link_libraries(scene_publisher PRIVATE stocs_ros)
+add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder_main.cpp)
+target_link_libraries(demo_recorder PRIVATE stocs_ros)
 add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/stocs_nodelet.cpp)
 target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros)
 
 install(TARGETS stocs_ros stocs_ros_nodelet
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
-install(TARGETS stocs_node scene_publisher RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(TARGETS stocs_node scene_publisher demo_recorder RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY include/stocs_ros/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
-install(DIRECTORY launch config DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY launch config meshes DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

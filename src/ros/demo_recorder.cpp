@@ -1,0 +1,76 @@
+#include "stocs_ros/demo_recorder.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "stocs/bop_results.h"
+#include "stocs/error.h"
+
+namespace stocs_ros {
+
+DemoRecorder::DemoRecorder(const ros::NodeHandle& pnh) {
+  double timeout = 120;
+  pnh.param("frames", frames_, frames_);
+  pnh.param("scene", scene_, scene_);
+  pnh.param("image", image_, image_);
+  pnh.param("timeout", timeout, timeout);
+  if (!pnh.getParam("results", results_) || results_.empty()) {
+    throw stocs::InputError("~results (the BOP results file to write) is required");
+  }
+  if (frames_ < 1 || frames_ > 1000) {
+    throw stocs::InputError(fmt::format("~frames {} is outside [1, 1000]", frames_));
+  }
+  if (!(timeout > 0)) throw stocs::InputError(fmt::format("~timeout {} must be positive", timeout));
+  subscriber_ = nh_.subscribe("objects", 10, &DemoRecorder::onObjects, this);
+  timeout_ = nh_.createWallTimer(
+      ros::WallDuration(timeout),
+      [this, timeout](const ros::WallTimerEvent&) {
+        ROS_ERROR("demo: %zu of %d frames of estimates within %.0f s; is the node running?",
+                  latencies_.size(), frames_, timeout);
+        ros::shutdown();
+      },
+      true);
+}
+
+void DemoRecorder::onObjects(const ObjectPoseArray::ConstPtr& message) {
+  const double latency = (ros::Time::now() - message->header.stamp).toSec();
+  latencies_.push_back(latency);
+  fmt::print("frame {} of {}: {} object(s), latency {:.0f} ms\n", latencies_.size(), frames_,
+             message->objects.size(), 1000 * latency);
+  for (const ObjectPose& o : message->objects) {
+    const auto& p = o.pose.position;
+    fmt::print(
+        "  {} (id {}): score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm, {:.0f} ms, {} hypotheses\n",
+        o.name, o.id, o.score, 1000 * p.x, 1000 * p.y, 1000 * p.z, 1000 * o.estimation_time,
+        o.hypotheses_verified);
+  }
+  if (static_cast<int>(latencies_.size()) < frames_) return;
+  std::vector<double> sorted = latencies_;
+  std::sort(sorted.begin(), sorted.end());
+  fmt::print(
+      "latency from input stamp to estimates over {} frames: median {:.0f} ms, max {:.0f} ms\n",
+      sorted.size(), 1000 * sorted[sorted.size() / 2], 1000 * sorted.back());
+  writeResults(*message, latency);
+  ros::shutdown();
+}
+
+void DemoRecorder::writeResults(const ObjectPoseArray& message, double latency) const {
+  std::vector<stocs::BopResult> rows;
+  for (const ObjectPose& o : message.objects) {
+    stocs::BopResult r;
+    r.scene_id = scene_;
+    r.im_id = image_;
+    r.obj_id = o.id;
+    r.score = o.score;
+    const auto& q = o.pose.orientation;
+    r.R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
+    r.t_mm = 1000.0 * Eigen::Vector3d(o.pose.position.x, o.pose.position.y, o.pose.position.z);
+    r.time = latency;
+    rows.push_back(r);
+  }
+  stocs::writeBopResults(results_, rows);
+  fmt::print("results of the last frame: {}\n", results_);
+}
+
+}  // namespace stocs_ros
