@@ -121,6 +121,16 @@ Eigen::Isometry3f viewingPose(float distance) {
   return pose;
 }
 
+CameraIntrinsics testCamera() {
+  CameraIntrinsics k;
+  k.fx = k.fy = 300;
+  k.cx = 160;
+  k.cy = 120;
+  k.width = 320;
+  k.height = 240;
+  return k;
+}
+
 Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root) {
   namespace fs = std::filesystem;
   const fs::path scene = root / "test" / "000000";
@@ -128,12 +138,7 @@ Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root) {
   fs::create_directories(root / "models");
   const MeshData mesh = asymmetricMesh();
   writePly(root / "models" / "obj_000001.ply", mesh, 1000.0f);
-  CameraIntrinsics k;
-  k.fx = k.fy = 300;
-  k.cx = 160;
-  k.cy = 120;
-  k.width = 320;
-  k.height = 240;
+  const CameraIntrinsics k = testCamera();
   const Eigen::Isometry3f pose = viewingPose(0.6f);
   cv::Mat labels;
   const cv::Mat depth = renderDepth({{mesh, pose}}, k, &labels);

@@ -40,6 +40,9 @@ MeshData boxMesh(const Eigen::Vector3f& size);
 /// the outside.
 MeshData latheMesh(const std::vector<Eigen::Vector2f>& profile, int segments);
 
+/// The 320 x 240 camera of the rendered test scenes (f = 300 px, principal point at the centre).
+CameraIntrinsics testCamera();
+
 struct PlacedMesh {
   MeshData mesh;
   Eigen::Isometry3f pose;  ///< mesh frame to camera
