@@ -1,8 +1,17 @@
 # Pose estimation methods behind one interface (StoCS, its ablations, baselines), kept out of the
-# core so that heavy registration and surface-matching headers compile only here.
+# core so that heavy registration and surface-matching headers compile only here. The baselines'
+# packages are found here, not in the core: PCL's 4PCS family (registration, with the kd-tree and
+# search it queries and the plane model of its base selection) and OpenCV's PPF detector.
+find_package(PCL REQUIRED COMPONENTS registration search kdtree sample_consensus)
+find_package(OpenCV REQUIRED COMPONENTS surface_matching)
+
 file(GLOB STOCS_METHOD_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/methods/*.cpp)
 add_library(stocs_methods ${STOCS_METHOD_SOURCES})
-target_link_libraries(stocs_methods PUBLIC stocs_core PRIVATE fmt::fmt)
+target_include_directories(stocs_methods SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
+target_link_libraries(stocs_methods PUBLIC stocs_core
+  PRIVATE fmt::fmt opencv_surface_matching ${PCL_REGISTRATION_LIBRARIES} ${PCL_SEARCH_LIBRARIES}
+          ${PCL_KDTREE_LIBRARIES} ${PCL_SAMPLE_CONSENSUS_LIBRARIES})
+target_compile_definitions(stocs_methods PRIVATE ${PCL_DEFINITIONS})
 set_target_properties(stocs_methods PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 if(STOCS_CATKIN)

@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 
+#include "baseline_methods.h"
 #include "stocs/error.h"
 #include "stocs/methods/pose_method.h"
 #include "stocs/methods/stocs_methods.h"
@@ -15,6 +16,9 @@ using Factory = std::function<std::unique_ptr<PoseMethod>(const MethodOptions&)>
 
 const std::map<std::string, Factory>& registry() {
   static const std::map<std::string, Factory> methods = {
+      {"fpcs", makeFpcsMethod},
+      {"kfpcs", makeKfpcsMethod},
+      {"ppf", makePpfMethod},
       {"stocs", [](const MethodOptions&) { return std::make_unique<StocsMethod>(); }},
       {"stocs-hard",
        [](const MethodOptions& o) {

@@ -1,7 +1,7 @@
 // StoCS and its hard-segmentation ablation as PoseMethods.
-#include <opencv2/imgproc.hpp>
-
 #include "stocs/methods/stocs_methods.h"
+
+#include "hard_segment.h"
 
 namespace stocs {
 namespace {
@@ -26,14 +26,12 @@ MethodResult StocsMethod::estimate(const MethodInput& in) {
 }
 
 MethodResult HardSegmentStocsMethod::estimate(const MethodInput& in) {
-  // The segment is the pixels above the threshold, all with the same weight: StoCS without the
-  // soft prior, as the baselines see the scene.
-  cv::Mat hard;
-  cv::threshold(*in.probability, hard, threshold_, 1.0, cv::THRESH_BINARY);
+  // StoCS without the soft prior: the segment the baselines see (see hard_segment.h).
   PipelineParams params = *in.params;
-  params.segment.min_probability = 0.5f;
-  return fromObjectEstimate(
-      estimateObject(*in.cloud, in.focal_px, hard, *in.model, params, in.boundary));
+  params.segment = hardSegmentParams(params.segment);
+  return fromObjectEstimate(estimateObject(*in.cloud, in.focal_px,
+                                           hardProbability(*in.probability, threshold_), *in.model,
+                                           params, in.boundary));
 }
 
 }  // namespace stocs

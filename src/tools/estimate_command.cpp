@@ -106,6 +106,7 @@ int runEstimate(const EstimateOptions& o) {
                      models[obj].model.size(), models[obj].ppf_map.memoryBytes() / 1e6,
                      toString(report.outcome),
                      report.detail.empty() ? "" : " (" + report.detail + ")");
+          method->prepare(models[obj]);
         }
         probability[obj] = probabilities->load(scene, im, obj);
       }

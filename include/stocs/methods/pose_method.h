@@ -57,6 +57,10 @@ class PoseMethod {
  public:
   virtual ~PoseMethod() = default;
   virtual std::string name() const = 0;
+  /// Builds the per-model state a method keeps (e.g. a trained detector) ahead of estimate(), so
+  /// that this offline step stays out of the timings, as the PPF map of StoCS is prepared before
+  /// the clock starts. Optional: estimate() builds what is missing itself.
+  virtual void prepare(const PreparedModel& /*model*/) {}
   /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
   virtual MethodResult estimate(const MethodInput& input) = 0;
 };

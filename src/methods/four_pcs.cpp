@@ -1,0 +1,97 @@
+// Parameters of both PCL 4PCS baselines (pcl/registration/ia_fpcs.h and PCL's own tests):
+//   delta            max(segment voxel size, model sampling radius), absolute: "the point accuracy
+//                    to ensure finding neighbors between source <-> target"; PCL's normalised
+//                    default (1 x the target's mean spacing) gives about the same, not reproducibly
+//   approx. overlap  0.5, PCL's default: the visible share of an object in clutter is unknown
+//   number of samples 100 model samples, as PCL's FPCS test (test_fpcs_ia_data.h); drawn here
+//   max. iterations  the StoCS base budget (one PCL iteration = one base with its congruent sets)
+//   max. time        the StoCS time budget rounded up to whole seconds (PCL counts whole seconds
+//                    and checks between bases only)
+//   score threshold  0: no early stop, every base of the budget is tried
+//   normals          given (segment and model normals); max. normal difference 90 deg (default)
+#include "four_pcs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+#include "stocs/random.h"
+
+namespace stocs {
+namespace {
+
+constexpr size_t kSourceSamples = 100;
+
+/// Every index of `n` when `count` is 0 or not below n, else `count` distinct indices drawn
+/// uniformly with `seed` (partial Fisher-Yates), in increasing order.
+std::vector<size_t> sampleIndices(size_t n, size_t count, uint64_t seed) {
+  std::vector<size_t> indices(n);
+  std::iota(indices.begin(), indices.end(), size_t{0});
+  if (count == 0 || count >= n) return indices;
+  Rng rng(seed);
+  for (size_t i = 0; i < count; ++i) {
+    std::swap(indices[i], indices[i + uniformIndex(rng, static_cast<uint32_t>(n - i))]);
+  }
+  indices.resize(count);
+  std::sort(indices.begin(), indices.end());
+  return indices;
+}
+
+pcl::PointCloud<pcl::PointXYZ>::Ptr toPoints(const std::vector<Eigen::Vector3f>& points,
+                                             const std::vector<size_t>& indices) {
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  cloud->reserve(indices.size());
+  for (size_t i : indices)
+    cloud->push_back(pcl::PointXYZ(points[i].x(), points[i].y(), points[i].z()));
+  return cloud;
+}
+
+pcl::PointCloud<pcl::Normal>::Ptr toNormals(const std::vector<Eigen::Vector3f>& normals,
+                                            const std::vector<size_t>& indices) {
+  auto cloud = pcl::make_shared<pcl::PointCloud<pcl::Normal>>();
+  cloud->reserve(indices.size());
+  for (size_t i : indices)
+    cloud->push_back(pcl::Normal(normals[i].x(), normals[i].y(), normals[i].z()));
+  return cloud;
+}
+
+}  // namespace
+
+unsigned fourPcsSeed(uint64_t seed) {
+  return static_cast<unsigned>(streamSeed(seed, 0));
+}
+
+std::optional<BaselineHypothesis> alignFourPcs(FourPcs& aligner, const SoftSegment& segment,
+                                               const MethodInput& input) {
+  const ObjectModel& model = input.model->model;
+  const StocsParams& budget = input.params->stocs;
+  // Every pair of source points is compared per base and every candidate validated on all of them,
+  // so the full model (~500 samples) costs seconds per base. Drawn here rather than by
+  // setNumberOfSamples(), which draws with the clock-seeded std::rand in initCompute().
+  const std::vector<size_t> source =
+      sampleIndices(model.size(), kSourceSamples, streamSeed(budget.seed, 1));
+  aligner.setInputSource(toPoints(model.points, source));
+  aligner.setSourceNormals(toNormals(model.normals, source));
+  const std::vector<size_t> target = sampleIndices(segment.size(), 0, 0);
+  aligner.setInputTarget(toPoints(segment.points, target));
+  aligner.setTargetNormals(toNormals(segment.normals, target));
+  aligner.setDelta(std::max(input.params->segment.voxel_size, model.sampling_radius), false);
+  aligner.setApproxOverlap(0.5f);
+  aligner.setMaximumIterations(budget.bases);
+  if (budget.time_budget > 0) {
+    aligner.setMaxComputationTime(static_cast<int>(std::ceil(budget.time_budget)));  // whole s
+  }
+  aligner.setScoreThreshold(0.0f);
+  pcl::PointCloud<pcl::PointXYZ> aligned;
+  aligner.align(aligned);
+  const float fitness = aligner.getFitnessScore();  // lower is better, max() without a candidate
+  if (!(fitness < std::numeric_limits<float>::max())) return std::nullopt;
+  BaselineHypothesis h;
+  h.pose.matrix() = aligner.getFinalTransformation();
+  h.score = 1.0 - fitness;
+  return h;
+}
+
+}  // namespace stocs
