@@ -42,7 +42,7 @@ std::filesystem::path writeConfig(const std::filesystem::path& dir, const std::s
 
 TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
   const std::filesystem::path dir = stocs::test::scratchDir("configs");
-  stocs::writePly(dir / "box.ply", stocs::test::boxMesh({60, 40, 30}));
+  stocs::writePly(dir / "box.ply", stocs::boxMesh({60, 40, 30}));
 
   expectNodeFails(dir / "missing.yaml", "cannot open the configuration file");
   expectNodeFails(writeConfig(dir, "broken.yaml", "objects: [\n"), "invalid YAML");

@@ -35,7 +35,7 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     table.translation().z() = 0.7f;
     cv::Mat labels;
     const cv::Mat depth = test::renderDepth(
-        {{test::asymmetricMesh(), truth_}, {test::boxMesh({0.6f, 0.5f, 0.02f}), table}}, camera_,
+        {{asymmetricMesh(), truth_}, {boxMesh({0.6f, 0.5f, 0.02f}), table}}, camera_,
         &labels);
     cloud_ = cloudFromDepth(depth, camera_, 1.0);
     probability_ = cv::Mat(labels.size(), CV_32FC1, cv::Scalar(0));
@@ -43,7 +43,7 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     cv::Mat near_object(labels.size(), CV_8UC1, cv::Scalar(0));
     near_object(cv::Rect(80, 40, 170, 160)).setTo(255);
     probability_.setTo(0.3f, (labels == 2) & near_object);
-    model_.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+    model_.model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
     model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
   }
 
@@ -217,9 +217,9 @@ TEST(PpfBaseline, KeepsOneTrainedDetectorPerModel) {
   // One method instance on two objects: each frame must be matched with its own model's detector.
   const CameraIntrinsics k = test::testCamera();
   // The same shape at two sizes: a detector trained on the other size places the object wrongly.
-  MeshData larger = test::asymmetricMesh();
+  MeshData larger = asymmetricMesh();
   for (Eigen::Vector3f& v : larger.vertices) v *= 1.5f;
-  const MeshData shapes[2] = {test::asymmetricMesh(), larger};
+  const MeshData shapes[2] = {asymmetricMesh(), larger};
   const std::unique_ptr<PoseMethod> ppf = makeMethod("ppf");
   const PipelineParams params;
   for (int round = 0; round < 2; ++round) {
@@ -253,7 +253,7 @@ TEST(PpfBaseline, KeepsOneTrainedDetectorPerModel) {
 TEST(BaselinesCli, EveryBaselineWritesBopResults) {
   const auto root = test::scratchDir("cli_baselines");
   const Eigen::Isometry3f truth = test::writeSyntheticBopDataset(root / "data");
-  const ObjectModel model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+  const ObjectModel model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
   for (const std::string& method : kBaselines) {
     std::string out;
     const std::filesystem::path results = root / (method + ".csv");

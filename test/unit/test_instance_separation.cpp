@@ -10,7 +10,7 @@ namespace {
 
 TEST(InstanceSeparation, SymmetricLookAlikesAreOnePlaceNeighboursAreNot) {
   // A 10 x 6 x 4 cm box: turning it 180 degrees about z leaves the same surface.
-  const ObjectModel box = prepareModel(test::boxMesh({0.1f, 0.06f, 0.04f}), ModelSamplingParams{});
+  const ObjectModel box = prepareModel(boxMesh({0.1f, 0.06f, 0.04f}), ModelSamplingParams{});
   const InstanceSeparation separation(box, 0.1f * box.diameter);
   const Eigen::Isometry3f a = test::viewingPose(0.6f);
   Eigen::Isometry3f turned = a;

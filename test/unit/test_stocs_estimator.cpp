@@ -131,11 +131,11 @@ TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
   truths[1].pretranslate(Eigen::Vector3f(0.08f, 0.02f, 0));
   cv::Mat labels;
   const cv::Mat depth = test::renderDepth(
-      {{test::asymmetricMesh(), truths[0]}, {test::asymmetricMesh(), truths[1]}}, camera, &labels);
+      {{asymmetricMesh(), truths[0]}, {asymmetricMesh(), truths[1]}}, camera, &labels);
   cv::Mat probability;
   cv::Mat(labels > 0).convertTo(probability, CV_32FC1, 0.9 / 255);
   PreparedModel model;
-  model.model = prepareModel(test::asymmetricMesh(), ModelSamplingParams{});
+  model.model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
   model.ppf_map = PpfHashMap::build(model.model, PpfParams{});
   PipelineParams params;
   params.stocs.instances = 3;  // one more than there are: the third, if any, is not a duplicate
