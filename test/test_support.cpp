@@ -50,23 +50,11 @@ cv::Mat renderDepth(const std::vector<PlacedMesh>& objects, const CameraIntrinsi
 }
 
 CameraIntrinsics smallCamera() {
-  CameraIntrinsics k;
-  k.fx = k.fy = 200;
-  k.cx = 79.5;
-  k.cy = 59.5;
-  k.width = 160;
-  k.height = 120;
-  return k;
+  return {200, 200, 79.5, 59.5, 160, 120};
 }
 
 CameraIntrinsics testCamera() {
-  CameraIntrinsics k;
-  k.fx = k.fy = 300;
-  k.cx = 160;
-  k.cy = 120;
-  k.width = 320;
-  k.height = 240;
-  return k;
+  return {300, 300, 160, 120, 320, 240};
 }
 
 Eigen::Isometry3f viewingPose(float distance) {

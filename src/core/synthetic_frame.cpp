@@ -45,13 +45,7 @@ MeshData tableTop() {
 }  // namespace
 
 CameraIntrinsics defaultSynthCamera() {
-  CameraIntrinsics k;
-  k.fx = k.fy = 615.0;
-  k.cx = 319.5;
-  k.cy = 239.5;
-  k.width = 640;
-  k.height = 480;
-  return k;
+  return {615.0, 615.0, 319.5, 239.5, 640, 480};
 }
 
 SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,

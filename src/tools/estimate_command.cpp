@@ -46,10 +46,9 @@ struct NearestInstance {
   double adds = -1;  ///< mm
 };
 
-NearestInstance nearestInstance(const PreparedModel& model, const RigidPose& estimate,
+NearestInstance nearestInstance(const std::vector<Eigen::Vector3f>& points_mm,
+                                const RigidPose& estimate,
                                 const std::vector<BopGtInstance>& instances, int obj_id) {
-  std::vector<Eigen::Vector3f> points_mm;
-  for (const Eigen::Vector3f& p : model.model.points) points_mm.push_back(p * 1000.0f);
   NearestInstance best;
   for (size_t i = 0; i < instances.size(); ++i) {
     if (instances[i].obj_id != obj_id) continue;
@@ -151,6 +150,8 @@ int runEstimate(const EstimateOptions& o) {
             e.instances.empty() ? std::vector<ScoredPose>{{e.pose, e.score}} : e.instances;
         const auto it = info.find(obj);
         const double diameter = it != info.end() ? it->second.diameter_mm : 0;
+        std::vector<Eigen::Vector3f> points_mm;  // once for all poses of the target
+        for (const Eigen::Vector3f& p : models[obj].model.points) points_mm.push_back(p * 1000.0f);
         std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
         for (size_t k = 0; k < poses.size(); ++k) {
           const RigidPose pose = toBop(poses[k].pose);
@@ -159,7 +160,7 @@ int runEstimate(const EstimateOptions& o) {
           line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", poses[k].score,
                               pose.t.x(), pose.t.y(), pose.t.z());
           if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
-          const NearestInstance near = nearestInstance(models[obj], pose, instances, obj);
+          const NearestInstance near = nearestInstance(points_mm, pose, instances, obj);
           if (near.index < 0 || diameter <= 0) continue;
           line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}", near.adds,
                               100.0 * near.adds / diameter, near.index);

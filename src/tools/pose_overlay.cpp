@@ -18,8 +18,9 @@ cv::Mat silhouette(const MeshData& model, const Eigen::Isometry3f& pose,
   for (const Eigen::Vector3f& v : model.vertices) {
     const Eigen::Vector3f p = pose * v;
     if (p.z() <= 0) continue;
-    const int u = static_cast<int>(std::lround(camera.fx * p.x() / p.z() + camera.cx));
-    const int w = static_cast<int>(std::lround(camera.fy * p.y() / p.z() + camera.cy));
+    const Eigen::Vector2f px = camera.project(p);
+    const int u = static_cast<int>(std::lround(px.x()));
+    const int w = static_cast<int>(std::lround(px.y()));
     if (u >= 0 && w >= 0 && u < camera.width && w < camera.height) mask.at<uint8_t>(w, u) = 255;
   }
   const cv::Mat disc = cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7});
