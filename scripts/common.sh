@@ -2,7 +2,10 @@
 REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # ROS 1 comes from Debian under /usr; a pyenv or venv Python earlier in PATH breaks catkin_pkg and rospy.
 export PATH="/usr/bin:/bin:$PATH"
-WS="${STOCS_WS:-$REPO/build/ws}"
+# The catkin workspace lives beside the checkout, never inside it: a workspace link back into the
+# package would let roslaunch and rostest find every launch file twice ("multiple files").
+WS="${STOCS_WS:-$(dirname "$REPO")/$(basename "$REPO")_ws}"
 JOBS="${STOCS_JOBS:-$(nproc)}"
-# ccache keys on paths relative to the repository, so checkouts in other folders share hits.
-export CCACHE_BASEDIR="$REPO"
+# ccache keys on paths relative to the folder holding checkout and workspace, so checkouts in
+# other folders share hits.
+export CCACHE_BASEDIR="$(dirname "$REPO")"

@@ -32,7 +32,7 @@ rm -f "$demo/results.csv"
 # A ROS master of the demo's own on a free port: no roscore needed, none disturbed.
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$demo/ros"
-roslaunch -p "$port" "$REPO/launch/demo.launch" dataset:="$scene" results:="$demo/results.csv" \
+roslaunch -p "$port" stocs_ros demo.launch dataset:="$scene" results:="$demo/results.csv" \
   rviz:="$rviz" 2>&1 | grep -v -e "^\[ INFO\]" -e "^started roslaunch" || true
 if [ ! -s "$demo/results.csv" ]; then
   echo "demo: FAILED, no estimates were recorded (log: $demo/ros/log)" >&2
