@@ -27,7 +27,14 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   COMMAND stocs_ros_make_test_data ${STOCS_ROS_TEST_DATA}
   DEPENDS stocs_ros_make_test_data
   COMMENT "Writing the generated dataset of the ROS tests")
-add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml)
+# The demo's scene (scripts/demo.sh makes the same one), written by the CLI as a user would.
+add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
+  COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/synth_scene --objects 6 --distractors 2 --seed 1
+    --quiet
+  DEPENDS stocs
+  COMMENT "Generating the cluttered scene of the ROS tests")
+add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml
+  ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json)
 add_dependencies(tests stocs_ros_test_data)
 
 # stocs_add_rostest_node(NAME SOURCES...): a gtest executable that rostest launch files run.
@@ -44,12 +51,16 @@ endfunction()
 stocs_add_rostest_node(test_node_outputs ${PROJECT_SOURCE_DIR}/test/ros/test_node_outputs.cpp)
 stocs_add_rostest_node(test_bad_inputs ${PROJECT_SOURCE_DIR}/test/ros/test_bad_inputs.cpp)
 stocs_add_rostest_node(test_bad_config ${PROJECT_SOURCE_DIR}/test/ros/test_bad_config.cpp)
+stocs_add_rostest_node(test_scene_poses ${PROJECT_SOURCE_DIR}/test/ros/test_scene_poses.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/nodelet_multichannel.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/synth_scene_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})

@@ -22,20 +22,25 @@ set -u
 tool="$WS/devel/lib/stocs_ros/stocs"
 demo="$REPO/build/demo"
 scene="$demo/scene"
-if [ ! -f "$scene/test/000000/scene_gt.json" ]; then
+# Generated once; again when the generating command changes.
+synth=(synth --out "$scene" --objects 6 --distractors 2 --seed 1 --quiet)
+if [ ! -f "$scene/test/000000/scene_gt.json" ] || [ "$(cat "$demo/scene.cmd" 2>/dev/null)" != "${synth[*]}" ]; then
   rm -rf "$scene"
   mkdir -p "$demo"
-  "$tool" synth --out "$scene" --objects 6 --distractors 2 --seed 7 --quiet
+  "$tool" "${synth[@]}"
+  echo "${synth[*]}" > "$demo/scene.cmd"
 fi
 rm -f "$demo/results.csv"
 
 # A ROS master of the demo's own on a free port: no roscore needed, none disturbed.
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$demo/ros"
+# The whole launch output goes to a log; the terminal shows the recorder's report.
 roslaunch -p "$port" stocs_ros demo.launch dataset:="$scene" results:="$demo/results.csv" \
-  rviz:="$rviz" 2>&1 | grep -v -e "^\[ INFO\]" -e "^started roslaunch" || true
+  rviz:="$rviz" > "$demo/roslaunch.log" 2>&1 || true
+grep -E "^(frame |  |latency |results )|ERROR|FATAL" "$demo/roslaunch.log" || true
 if [ ! -s "$demo/results.csv" ]; then
-  echo "demo: FAILED, no estimates were recorded (log: $demo/ros/log)" >&2
+  echo "demo: FAILED, no estimates were recorded (log: $demo/roslaunch.log)" >&2
   exit 1
 fi
 

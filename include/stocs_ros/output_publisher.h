@@ -1,5 +1,6 @@
 #pragma once
-// Publishes a frame's result: TF from the cloud's frame to <frame_prefix><object>, ~poses
+// Publishes a frame's result: TF from the cloud's frame to <frame_prefix><object> (and
+// <frame_prefix><object>_<k> for further instances, see instanceName), ~poses
 // (PoseArray), ~objects (ObjectPoseArray) and ~markers (MarkerArray), as the config's output
 // section selects. A result older than one already published (a service call on explicit, older
 // inputs) is not published: consumers see stamps that never go back. Called from one thread at a
@@ -15,6 +16,7 @@
 
 #include "stocs_ros/estimation_setup.h"
 #include "stocs_ros/frame_estimation.h"
+#include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {
 
@@ -35,7 +37,7 @@ class OutputPublisher {
   /// Last stamp sent per child frame: tf2 warns (TF_REPEATED_DATA) about a transform sent twice
   /// for one stamp, as happens when ~estimate runs again on a frame already estimated.
   std::map<std::string, ros::Time> tf_stamps_;
-  std::set<std::string> shown_markers_;
+  std::set<MarkerKey> shown_markers_;
   std::optional<ros::Time> newest_stamp_;
 };
 

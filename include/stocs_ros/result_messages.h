@@ -8,23 +8,44 @@
 
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "stocs_ros/estimation_setup.h"
 #include "stocs_ros/frame_estimation.h"
 
 namespace stocs_ros {
 
-/// The found objects, in the order of the result.
+/// One pose of a found object: its best pose (instance 0) or a further distinct instance
+/// (estimation.stocs.instances > 1).
+struct FoundPose {
+  const ObjectOutcome* outcome;
+  size_t instance;
+  Eigen::Isometry3f pose;
+  float score;
+};
+
+/// Every pose of the result: objects in result order, each object's instances best first.
+std::vector<FoundPose> foundPoses(const FrameResult& result);
+
+/// The name of an object's pose as TF child frame (after the prefix) and label: "<object>" for
+/// instance 0, "<object>_<k>" for instance k > 0 (as the scene publisher names gt_<object>_<k>).
+std::string instanceName(const std::string& object, size_t instance);
+
+/// The found poses, in the order of foundPoses.
 ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSetup& setup);
 
-/// The poses of the found objects, in the same order as toObjectPoseArray.
+/// The found poses, in the same order as toObjectPoseArray.
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result);
 
-/// Per found object, its rviz mesh (config `mesh`) or else its model samples as points at its pose
-/// and a text label "name score"; namespace = object name, ids 0 (body) and 1 (label). Objects in
-/// `shown` (the names shown by the previous call) that are not found now get DELETE markers;
-/// `shown` is updated.
+/// A marker's namespace (object name) and id.
+using MarkerKey = std::pair<std::string, int>;
+
+/// Per found pose, its rviz mesh (config `mesh`) or else its model samples as points at the pose,
+/// and a text label "instanceName score"; namespace = object name, ids 2k (body) and 2k + 1 (label)
+/// for instance k. Markers in `shown` (those of the previous call) that are not shown now get
+/// DELETE markers; `shown` is updated.
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
-                                          std::set<std::string>& shown);
+                                          std::set<MarkerKey>& shown);
 
 }  // namespace stocs_ros

@@ -4,9 +4,11 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 
 #include "stocs/bop_results.h"
 #include "stocs/error.h"
+#include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {
 
@@ -43,15 +45,21 @@ void DemoRecorder::onObjects(const ObjectPoseArray::ConstPtr& message) {
     const auto& p = o.pose.position;
     fmt::print(
         "  {} (id {}): score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm, {:.0f} ms, {} hypotheses\n",
-        o.name, o.id, o.score, 1000 * p.x, 1000 * p.y, 1000 * p.z, 1000 * o.estimation_time,
-        o.hypotheses_verified);
+        instanceName(o.name, o.instance), o.id, o.score, 1000 * p.x, 1000 * p.y, 1000 * p.z,
+        1000 * o.estimation_time, o.hypotheses_verified);
   }
   if (static_cast<int>(latencies_.size()) < frames_) return;
   std::vector<double> sorted = latencies_;
   std::sort(sorted.begin(), sorted.end());
+  // Nearest-rank percentiles: with few frames, p95 is the maximum.
+  const auto percentile = [&](double q) {
+    const size_t rank = static_cast<size_t>(std::ceil(q * static_cast<double>(sorted.size())));
+    return 1000 * sorted[std::max<size_t>(rank, 1) - 1];
+  };
   fmt::print(
-      "latency from input stamp to estimates over {} frames: median {:.0f} ms, max {:.0f} ms\n",
-      sorted.size(), 1000 * sorted[sorted.size() / 2], 1000 * sorted.back());
+      "latency from input stamp to estimates over {} frames: p50 {:.0f} ms, p95 {:.0f} ms, max "
+      "{:.0f} ms\n",
+      sorted.size(), percentile(0.5), percentile(0.95), 1000 * sorted.back());
   writeResults(*message, latency);
   ros::shutdown();
 }

@@ -291,17 +291,22 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   MapReader lcp = stocs.map("lcp");
   lcp.get("distance", p.stocs.lcp.distance);
   lcp.get("normal_angle_deg", p.stocs.lcp.normal_angle_deg);
+  lcp.get("coarse_fraction", p.stocs.lcp.coarse_fraction);
+  lcp.get("coarse_ratio", p.stocs.lcp.coarse_ratio);
   lcp.rejectUnknownKeys();
   MapReader icp = stocs.map("icp");
   icp.get("enabled", p.stocs.icp.enabled);
   icp.get("iterations", p.stocs.icp.iterations);
   icp.get("max_distance", p.stocs.icp.max_distance);
   icp.get("normal_angle_deg", p.stocs.icp.normal_angle_deg);
+  icp.get("candidates", p.stocs.icp.candidates);
   icp.rejectUnknownKeys();
   stocs.get("bases", p.stocs.bases);
   stocs.get("time_budget", p.stocs.time_budget);
   stocs.get("seed", p.stocs.seed);
   stocs.get("threads", p.stocs.threads);
+  stocs.get("instances", p.stocs.instances);
+  stocs.get("instance_separation", p.stocs.instance_separation);
   stocs.rejectUnknownKeys();
   reader.rejectUnknownKeys();
   try {

@@ -23,14 +23,14 @@ void OutputPublisher::publish(const FrameResult& result, const EstimationSetup& 
 
 void OutputPublisher::publishTransforms(const FrameResult& result, const EstimationSetup& setup) {
   std::vector<geometry_msgs::TransformStamped> transforms;
-  for (const ObjectOutcome& o : result.objects) {
-    if (!o.estimate.estimate.found) continue;
+  for (const FoundPose& f : foundPoses(result)) {
     const std::string child =
-        setup.config.output.frame_prefix + setup.config.objects[o.object].name;
+        setup.config.output.frame_prefix +
+        instanceName(setup.config.objects[f.outcome->object].name, f.instance);
     const auto last = tf_stamps_.find(child);
     if (last != tf_stamps_.end() && result.header.stamp <= last->second) continue;
     geometry_msgs::TransformStamped t =
-        tf2::eigenToTransform(Eigen::Isometry3d(o.estimate.estimate.pose.cast<double>()));
+        tf2::eigenToTransform(Eigen::Isometry3d(f.pose.cast<double>()));
     t.header = result.header;
     t.child_frame_id = child;
     transforms.push_back(t);

@@ -30,23 +30,24 @@ std_msgs::ColorRGBA colour(size_t object) {
   return out;
 }
 
-visualization_msgs::Marker bodyMarker(const ObjectOutcome& o, const EstimationSetup& setup) {
-  const ObjectConfig& config = setup.config.objects[o.object];
+visualization_msgs::Marker bodyMarker(const FoundPose& f, const EstimationSetup& setup) {
+  const size_t object = f.outcome->object;
+  const ObjectConfig& config = setup.config.objects[object];
   visualization_msgs::Marker m;
   m.ns = config.name;
-  m.id = 0;
+  m.id = static_cast<int>(2 * f.instance);
   m.action = visualization_msgs::Marker::ADD;
-  m.pose = poseMsg(o.estimate.estimate.pose);
-  m.color = colour(o.object);
+  m.pose = poseMsg(f.pose);
+  m.color = colour(object);
   if (!config.mesh_url.empty()) {
     m.type = visualization_msgs::Marker::MESH_RESOURCE;
     m.mesh_resource = config.mesh_url;
     m.scale.x = m.scale.y = m.scale.z = config.mesh_scale;
     return m;
   }
-  const std::vector<Eigen::Vector3f>& samples = setup.models[o.object].model.points;
+  const std::vector<Eigen::Vector3f>& samples = setup.models[object].model.points;
   m.type = visualization_msgs::Marker::POINTS;
-  m.scale.x = m.scale.y = std::max(0.002f, setup.models[o.object].model.sampling_radius);
+  m.scale.x = m.scale.y = std::max(0.002f, setup.models[object].model.sampling_radius);
   const size_t stride =
       std::max<size_t>(1, (samples.size() + kMaxMarkerPoints - 1) / kMaxMarkerPoints);
   for (size_t i = 0; i < samples.size(); i += stride) {
@@ -59,17 +60,18 @@ visualization_msgs::Marker bodyMarker(const ObjectOutcome& o, const EstimationSe
   return m;
 }
 
-visualization_msgs::Marker labelMarker(const ObjectOutcome& o, const EstimationSetup& setup) {
+visualization_msgs::Marker labelMarker(const FoundPose& f, const EstimationSetup& setup) {
+  const size_t object = f.outcome->object;
   visualization_msgs::Marker m;
-  m.ns = setup.config.objects[o.object].name;
-  m.id = 1;
+  m.ns = setup.config.objects[object].name;
+  m.id = static_cast<int>(2 * f.instance + 1);
   m.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
   m.action = visualization_msgs::Marker::ADD;
-  m.text = fmt::format("{} {:.3f}", m.ns, o.estimate.estimate.lcp.score);
+  m.text = fmt::format("{} {:.3f}", instanceName(m.ns, f.instance), f.score);
   m.pose.orientation.w = 1;
   // Above the object: optical frames have y pointing down.
-  const Eigen::Vector3f at = o.estimate.estimate.pose.translation() -
-                             Eigen::Vector3f(0, 0.6f * setup.models[o.object].model.diameter, 0);
+  const Eigen::Vector3f at =
+      f.pose.translation() - Eigen::Vector3f(0, 0.6f * setup.models[object].model.diameter, 0);
   m.pose.position.x = at.x();
   m.pose.position.y = at.y();
   m.pose.position.z = at.z();
@@ -80,18 +82,39 @@ visualization_msgs::Marker labelMarker(const ObjectOutcome& o, const EstimationS
 
 }  // namespace
 
+std::vector<FoundPose> foundPoses(const FrameResult& result) {
+  std::vector<FoundPose> out;
+  for (const ObjectOutcome& o : result.objects) {
+    const stocs::PoseEstimate& e = o.estimate.estimate;
+    if (!e.found) continue;
+    if (e.instances.empty()) {
+      out.push_back({&o, 0, e.pose, e.lcp.score});
+      continue;
+    }
+    for (size_t k = 0; k < e.instances.size(); ++k) {
+      out.push_back({&o, k, e.instances[k].pose, e.instances[k].lcp.score});
+    }
+  }
+  return out;
+}
+
+std::string instanceName(const std::string& object, size_t instance) {
+  return instance == 0 ? object : fmt::format("{}_{}", object, instance);
+}
+
 ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSetup& setup) {
   ObjectPoseArray out;
   out.header = result.header;
-  for (const ObjectOutcome& o : result.objects) {
-    if (!o.estimate.estimate.found) continue;
+  for (const FoundPose& f : foundPoses(result)) {
+    const ObjectConfig& config = setup.config.objects[f.outcome->object];
     ObjectPose p;
-    p.name = setup.config.objects[o.object].name;
-    p.id = setup.config.objects[o.object].id;
-    p.score = o.estimate.estimate.lcp.score;
-    p.pose = poseMsg(o.estimate.estimate.pose);
-    p.estimation_time = o.estimate.seconds;
-    p.hypotheses_verified = o.estimate.estimate.hypotheses;
+    p.name = config.name;
+    p.id = config.id;
+    p.instance = static_cast<uint32_t>(f.instance);
+    p.score = f.score;
+    p.pose = poseMsg(f.pose);
+    p.estimation_time = f.outcome->estimate.seconds;
+    p.hypotheses_verified = f.outcome->estimate.estimate.hypotheses;
     out.objects.push_back(p);
   }
   return out;
@@ -100,31 +123,27 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result) {
   geometry_msgs::PoseArray out;
   out.header = result.header;
-  for (const ObjectOutcome& o : result.objects) {
-    if (o.estimate.estimate.found) out.poses.push_back(poseMsg(o.estimate.estimate.pose));
-  }
+  for (const FoundPose& f : foundPoses(result)) out.poses.push_back(poseMsg(f.pose));
   return out;
 }
 
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
-                                          std::set<std::string>& shown) {
+                                          std::set<MarkerKey>& shown) {
   visualization_msgs::MarkerArray out;
-  std::set<std::string> now;
-  for (const ObjectOutcome& o : result.objects) {
-    if (!o.estimate.estimate.found) continue;
-    out.markers.push_back(bodyMarker(o, setup));
-    out.markers.push_back(labelMarker(o, setup));
-    now.insert(setup.config.objects[o.object].name);
-  }
-  for (const std::string& name : shown) {
-    if (now.count(name)) continue;
-    for (int id : {0, 1}) {
-      visualization_msgs::Marker m;
-      m.ns = name;
-      m.id = id;
-      m.action = visualization_msgs::Marker::DELETE;
-      out.markers.push_back(m);
+  std::set<MarkerKey> now;
+  for (const FoundPose& f : foundPoses(result)) {
+    for (visualization_msgs::Marker m : {bodyMarker(f, setup), labelMarker(f, setup)}) {
+      now.insert({m.ns, m.id});
+      out.markers.push_back(std::move(m));
     }
+  }
+  for (const MarkerKey& key : shown) {
+    if (now.count(key)) continue;
+    visualization_msgs::Marker m;
+    m.ns = key.first;
+    m.id = key.second;
+    m.action = visualization_msgs::Marker::DELETE;
+    out.markers.push_back(m);
   }
   for (visualization_msgs::Marker& m : out.markers) m.header = result.header;
   shown = std::move(now);

@@ -1,5 +1,7 @@
 #include "ros_test_support.h"
 
+#include <tf2_eigen/tf2_eigen.h>
+
 #include "stocs/bop_dataset.h"
 #include "stocs/mesh.h"
 #include "stocs/pose_metrics.h"
@@ -28,6 +30,12 @@ double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
   const double error =
       stocs::addsError(model.vertices, estimate, {truth.linear(), truth.translation()});
   return error / stocs::pointSetDiameter(model.vertices);
+}
+
+Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose) {
+  Eigen::Isometry3d out;
+  tf2::fromMsg(pose, out);
+  return out;
 }
 
 double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {

@@ -2,6 +2,7 @@
 // Helpers of the rostest test nodes: waiting for messages, ground truth from the played dataset,
 // and pose errors.
 
+#include <geometry_msgs/Pose.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -50,6 +51,9 @@ Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scen
 /// real-frame tests, which forgives what the shape cannot tell apart.
 double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
                          const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
+
+/// A pose message as an Eigen transform.
+Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose);
 
 /// Translation error (metres) and rotation angle (radians) between two poses.
 double translationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);

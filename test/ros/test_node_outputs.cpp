@@ -38,12 +38,6 @@ Expected g_expected;
 
 constexpr double kFirstOutputTimeout = 120;  // seconds: includes preparing an uncached model
 
-Eigen::Isometry3d toEigen(const geometry_msgs::Pose& pose) {
-  Eigen::Isometry3d out;
-  tf2::fromMsg(pose, out);
-  return out;
-}
-
 class NodeOutputs : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -99,7 +93,7 @@ TEST_F(NodeOutputs, ObjectsMessageIsNearTheGroundTruth) {
   EXPECT_GT(o.score, 0.0);
   EXPECT_GT(o.estimation_time, 0.0);
   EXPECT_GT(o.hypotheses_verified, 0);
-  expectNearTruth(toEigen(o.pose), "~objects");
+  expectNearTruth(poseToEigen(o.pose), "~objects");
 }
 
 TEST_F(NodeOutputs, PoseArrayAndTfGiveTheSamePose) {
@@ -111,15 +105,15 @@ TEST_F(NodeOutputs, PoseArrayAndTfGiveTheSamePose) {
   ASSERT_TRUE(poses);
   ASSERT_EQ(poses->poses.size(), 1u);
   EXPECT_EQ(poses->header.frame_id, g_expected.frame_id);
-  expectNearTruth(toEigen(poses->poses[0]), "~poses");
+  expectNearTruth(poseToEigen(poses->poses[0]), "~poses");
 
   // TF from the cloud's frame to the object, stamped with the cloud's stamp.
   const geometry_msgs::TransformStamped t = buffer.lookupTransform(
       g_expected.frame_id, g_expected.object, poses->header.stamp, ros::Duration(10));
   EXPECT_EQ(t.header.stamp, poses->header.stamp);
   const Eigen::Isometry3d tf_pose = tf2::transformToEigen(t);
-  EXPECT_LT(translationError(tf_pose, toEigen(poses->poses[0])), 1e-6);
-  EXPECT_LT(rotationError(tf_pose, toEigen(poses->poses[0])), 1e-4);
+  EXPECT_LT(translationError(tf_pose, poseToEigen(poses->poses[0])), 1e-6);
+  EXPECT_LT(rotationError(tf_pose, poseToEigen(poses->poses[0])), 1e-4);
   expectNearTruth(tf_pose, "TF");
 }
 
@@ -145,7 +139,7 @@ TEST_F(NodeOutputs, MarkersShowTheObjectWithALabel) {
       body = true;
       EXPECT_TRUE(m.type == visualization_msgs::Marker::POINTS ||
                   m.type == visualization_msgs::Marker::MESH_RESOURCE);
-      expectNearTruth(toEigen(m.pose), "body marker");
+      expectNearTruth(poseToEigen(m.pose), "body marker");
     } else if (m.id == 1) {
       label = true;
       EXPECT_EQ(m.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
@@ -166,7 +160,7 @@ TEST_F(NodeOutputs, ServiceEstimatesTheLatestFrameAndRejectsUnknownObjects) {
   EXPECT_EQ(r.result.header.frame_id, g_expected.frame_id);
   ASSERT_EQ(r.result.objects.size(), 1u);
   EXPECT_EQ(r.result.objects[0].name, g_expected.object);
-  expectNearTruth(toEigen(r.result.objects[0].pose), "~estimate");
+  expectNearTruth(poseToEigen(r.result.objects[0].pose), "~estimate");
 
   Estimate::Request unknown;
   unknown.objects = {"no_such_object"};
@@ -197,7 +191,7 @@ TEST_F(NodeOutputs, ServiceEstimatesExplicitInputsAndNamesBadOnes) {
   ASSERT_TRUE(r.success) << r.message;
   ASSERT_EQ(r.result.objects.size(), 1u);
   EXPECT_EQ(r.result.header.stamp, cloud->header.stamp);
-  expectNearTruth(toEigen(r.result.objects[0].pose), "~estimate on explicit inputs");
+  expectNearTruth(poseToEigen(r.result.objects[0].pose), "~estimate on explicit inputs");
 
   const auto expectError = [&](Estimate::Request request, const std::string& expected) {
     const Estimate::Response e = callEstimate(std::move(request));

@@ -80,6 +80,9 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.max_fit_rms, d.stocs.max_fit_rms);
   EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
   EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
+  EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
+  EXPECT_EQ(p.stocs.lcp.coarse_ratio, d.stocs.lcp.coarse_ratio);
+  EXPECT_EQ(p.stocs.icp.candidates, d.stocs.icp.candidates);
   EXPECT_EQ(p.stocs.icp.enabled, d.stocs.icp.enabled);
   EXPECT_EQ(p.stocs.icp.iterations, d.stocs.icp.iterations);
   EXPECT_EQ(p.stocs.icp.max_distance, d.stocs.icp.max_distance);
@@ -88,6 +91,8 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.time_budget, d.stocs.time_budget);
   EXPECT_EQ(p.stocs.seed, d.stocs.seed);
   EXPECT_EQ(p.stocs.threads, d.stocs.threads);
+  EXPECT_EQ(p.stocs.instances, d.stocs.instances);
+  EXPECT_EQ(p.stocs.instance_separation, d.stocs.instance_separation);
 }
 
 TEST(NodeConfig, ValuesReachTheirFieldsAndPathsResolve) {
@@ -115,7 +120,9 @@ model_cache: none
 estimation:
   segment: {min_probability: 0.3, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
-  stocs: {bases: 40, seed: 9, icp: {enabled: false}, lcp: {distance: 0.004}}
+  stocs: {bases: 40, seed: 9, instances: 4, instance_separation: 0.2,
+          icp: {enabled: false, candidates: 3},
+          lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
   const NodeConfig c = loadNodeConfig(file);
   const std::filesystem::path dir = file.parent_path();
@@ -155,6 +162,11 @@ estimation:
   EXPECT_EQ(c.estimation.stocs.seed, 9u);
   EXPECT_FALSE(c.estimation.stocs.icp.enabled);
   EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.distance, 0.004f);
+  EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_fraction, 0.5f);
+  EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_ratio, 0.3f);
+  EXPECT_EQ(c.estimation.stocs.icp.candidates, 3);
+  EXPECT_EQ(c.estimation.stocs.instances, 4);
+  EXPECT_FLOAT_EQ(c.estimation.stocs.instance_separation, 0.2f);
 }
 
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
@@ -169,6 +181,7 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
       {box + "estimation: {stocs: {bases: 2.5}}\n", "estimation.stocs.bases: expected an integer"},
       {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
       {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
+      {box + "estimation: {stocs: {instances: 0}}\n", "instances 0 is outside [1, 100]"},
       {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
       {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
       {box + "input: {probability: multichannel, channels: [box, cup]}\n",

@@ -1,5 +1,5 @@
-// A frame's result as messages: found objects only, their fields, and markers that delete what is
-// no longer found.
+// A frame's result as messages: found objects only, their fields, every instance of an object, and
+// markers that delete what is no longer found.
 #include <gtest/gtest.h>
 
 #include "stocs_ros/result_messages.h"
@@ -58,7 +58,7 @@ TEST(ResultMessages, OnlyFoundObjectsAreReported) {
 
 TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   const EstimationSetup setup = twoObjects();
-  std::set<std::string> shown;
+  std::set<MarkerKey> shown;
   FrameResult both;
   both.header.frame_id = "camera";
   both.objects = {outcome(0, true, 0.1f), outcome(1, true, 0.2f)};
@@ -74,7 +74,7 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   EXPECT_EQ(first.markers[2].mesh_resource, "package://stocs_ros/meshes/can.stl");
   EXPECT_FLOAT_EQ(first.markers[2].scale.x, 0.001f);
   for (const auto& m : first.markers) EXPECT_EQ(m.header.frame_id, "camera");
-  EXPECT_EQ(shown, (std::set<std::string>{"box", "can"}));
+  EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"can", 0}, {"can", 1}}));
 
   FrameResult only_can = both;
   only_can.objects[0].estimate.estimate.found = false;
@@ -88,9 +88,56 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
     }
   }
   EXPECT_EQ(deleted, 2);
-  EXPECT_EQ(shown, (std::set<std::string>{"can"}));
+  EXPECT_EQ(shown, (std::set<MarkerKey>{{"can", 0}, {"can", 1}}));
   // Once deleted, a marker is not deleted again.
   EXPECT_EQ(toMarkers(only_can, setup, shown).markers.size(), 2u);
+}
+
+/// `outcome` with `count` distinct instances at x = 0.1, 0.2, ... and falling scores.
+ObjectOutcome withInstances(size_t object, int count) {
+  ObjectOutcome o = outcome(object, true, 0.1f);
+  for (int k = 0; k < count; ++k) {
+    stocs::InstancePose p;
+    p.pose.translation() = Eigen::Vector3f(0.1f * (k + 1), 0, 1);
+    p.lcp.score = 0.5f - 0.1f * k;
+    o.estimate.estimate.instances.push_back(p);
+  }
+  return o;
+}
+
+TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
+  const EstimationSetup setup = twoObjects();
+  FrameResult result;
+  result.objects = {withInstances(0, 3), withInstances(1, 1)};
+  const ObjectPoseArray objects = toObjectPoseArray(result, setup);
+  ASSERT_EQ(objects.objects.size(), 4u);
+  for (uint32_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(objects.objects[k].name, "box");
+    EXPECT_EQ(objects.objects[k].instance, k);
+    EXPECT_FLOAT_EQ(objects.objects[k].pose.position.x, 0.1f * (k + 1));
+    EXPECT_FLOAT_EQ(objects.objects[k].score, 0.5f - 0.1f * k);
+  }
+  EXPECT_EQ(objects.objects[3].name, "can");
+  EXPECT_EQ(objects.objects[3].instance, 0u);
+  EXPECT_EQ(toPoseArray(result).poses.size(), 4u);
+
+  EXPECT_EQ(instanceName("box", 0), "box");
+  EXPECT_EQ(instanceName("box", 2), "box_2");
+  std::set<MarkerKey> shown;
+  const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
+  ASSERT_EQ(markers.markers.size(), 8u);
+  EXPECT_EQ(markers.markers[4].ns, "box");
+  EXPECT_EQ(markers.markers[4].id, 4);
+  EXPECT_EQ(markers.markers[5].text, "box_2 0.300");
+
+  // Fewer instances in the next frame: the markers of the lost ones are deleted.
+  result.objects[0].estimate.estimate.instances.resize(1);
+  const visualization_msgs::MarkerArray next = toMarkers(result, setup, shown);
+  std::set<MarkerKey> deleted;
+  for (const auto& m : next.markers) {
+    if (m.action == visualization_msgs::Marker::DELETE) deleted.insert({m.ns, m.id});
+  }
+  EXPECT_EQ(deleted, (std::set<MarkerKey>{{"box", 2}, {"box", 3}, {"box", 4}, {"box", 5}}));
 }
 
 }  // namespace

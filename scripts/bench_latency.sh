@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Node latency benchmark (issue 6): a generated 640x480 scene of three objects played at RATE Hz
+# through the StoCS node for FRAMES frames; the demo recorder prints the latency from each input
+# stamp to the node's estimates (~objects, published right after TF), p50 and p95.
+#   scripts/bench_latency.sh [FRAMES [RATE]]       (defaults: 60 frames at 5 Hz)
+# Needs the workspace built by scripts/build.sh.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+frames=${1:-60}
+rate=${2:-5}
+set +u
+source "$WS/devel/setup.bash"
+set -u
+tool="$WS/devel/lib/stocs_ros/stocs"
+out="$REPO/build/bench_latency"
+rm -rf "$out"
+mkdir -p "$out"
+"$tool" synth --out "$out/scene" --objects 3 --distractors 2 --seed 1 --quiet
+# The demo's configuration, restricted to the objects of the scene.
+/usr/bin/python3 - "$REPO/config/demo.yaml" "$out/scene/test/000000/scene_gt.json" > "$out/config.yaml" <<'PY'
+import json, sys
+ids = {g["obj_id"] for image in json.load(open(sys.argv[2])).values() for g in image}
+for line in open(sys.argv[1]):
+    if "id: " in line and int(line.split("id: ")[1].split(",")[0]) not in ids:
+        continue
+    print(line, end="")
+PY
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$out/ros"
+roslaunch -p "$port" stocs_ros demo.launch dataset:="$out/scene" config:="$out/config.yaml" \
+  results:="$out/results.csv" frames:="$frames" rate:="$rate" timeout:=600 > "$out/roslaunch.log" 2>&1 || true
+grep -E "^latency " "$out/roslaunch.log" || { echo "bench_latency: no result (log: $out/roslaunch.log)" >&2; exit 1; }
+echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -1,0 +1,112 @@
+// A scene with several objects, or several instances of one, played through the node: each
+// ground-truth instance of the checked objects is within an ADD-S limit of one of the poses the
+// node reports on ~objects (instance recall), at least one pose per object is reported, and TF
+// carries every reported pose as <object> or <object>_<k>. Parameters (private): dataset (a path,
+// or a name under STOCS_DATASETS when real_data), scene, image, node, max_adds, min_recall, and
+// obj_ids (the objects to check; empty: every object of the frame's ground truth).
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <stocs_ros/ObjectPoseArray.h>
+#include <tf2_eigen/tf2_eigen.h>
+#include <tf2_ros/transform_listener.h>
+
+#include <iostream>
+#include <map>
+#include <set>
+
+#include "ros_test_support.h"
+#include "stocs/bop_dataset.h"
+#include "stocs_ros/result_messages.h"
+#include "test_support.h"
+
+namespace stocs_ros::test {
+namespace {
+
+struct Expected {
+  std::string dataset, node;
+  bool real_data = false;
+  int scene = 0, image = 0;
+  double max_adds = 0.1;  ///< fraction of the diameter: the evaluation's success threshold
+  double min_recall = 1.0;
+  std::vector<int> obj_ids;
+};
+Expected g_expected;
+
+constexpr double kFirstOutputTimeout = 240;  // seconds: includes preparing six uncached models
+
+TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
+  std::filesystem::path dataset = g_expected.dataset;
+  if (g_expected.real_data) {
+    STOCS_REQUIRE_DATASETS(root);
+    dataset = root / g_expected.dataset;
+  }
+  // Ground-truth poses (metres) of the checked objects.
+  std::map<int, std::vector<Eigen::Isometry3d>> truth;
+  const std::set<int> checked(g_expected.obj_ids.begin(), g_expected.obj_ids.end());
+  const auto scene_truth = stocs::BopDataset(dataset).sceneGroundTruth(g_expected.scene);
+  for (const stocs::BopGtInstance& g : scene_truth.at(g_expected.image)) {
+    if (!checked.empty() && !checked.count(g.obj_id)) continue;
+    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+    t.linear() = g.R;
+    t.translation() = g.t_mm / 1000.0;
+    truth[g.obj_id].push_back(t);
+  }
+  ASSERT_FALSE(truth.empty()) << "no ground truth of the checked objects in the frame";
+
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  const std::optional<ObjectPoseArray> message =
+      waitForMessage<ObjectPoseArray>(g_expected.node + "/objects", kFirstOutputTimeout,
+                                      [](const ObjectPoseArray& m) { return !m.objects.empty(); });
+  ASSERT_TRUE(message) << "no estimates on " << g_expected.node << "/objects";
+
+  std::map<int, std::vector<Eigen::Isometry3d>> reported;
+  for (const ObjectPose& o : message->objects) {
+    const Eigen::Isometry3d pose = poseToEigen(o.pose);
+    reported[o.id].push_back(pose);
+    const std::string frame = instanceName(o.name, o.instance);
+    const Eigen::Isometry3d on_tf = tf2::transformToEigen(buffer.lookupTransform(
+        message->header.frame_id, frame, message->header.stamp, ros::Duration(10.0)));
+    EXPECT_LT(translationError(on_tf, pose), 1e-6) << frame << " on TF";
+    EXPECT_LT(rotationError(on_tf, pose), 1e-6) << frame << " on TF";
+  }
+  for (const auto& [obj_id, instances] : truth) {
+    EXPECT_FALSE(reported[obj_id].empty()) << "object " << obj_id << " got no pose";
+    size_t matched = 0;
+    for (const Eigen::Isometry3d& t : instances) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const Eigen::Isometry3d& pose : reported[obj_id]) {
+        best = std::min(best, addsDiameterRatio(dataset, obj_id, pose, t));
+      }
+      if (best < g_expected.max_adds) ++matched;
+    }
+    const double recall = static_cast<double>(matched) / static_cast<double>(instances.size());
+    std::cout << "object " << obj_id << ": " << matched << " of " << instances.size()
+              << " instances found, from " << reported[obj_id].size() << " poses\n";
+    EXPECT_GE(recall, g_expected.min_recall)
+        << "object " << obj_id << ": " << matched << " of " << instances.size()
+        << " instances within ADD-S " << g_expected.max_adds << " of the diameter, from "
+        << reported[obj_id].size() << " poses";
+  }
+}
+
+}  // namespace
+}  // namespace stocs_ros::test
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_scene_poses");
+  ros::NodeHandle pnh("~");
+  using stocs_ros::test::g_expected;
+  pnh.getParam("dataset", g_expected.dataset);
+  pnh.getParam("node", g_expected.node);
+  pnh.param("real_data", g_expected.real_data, g_expected.real_data);
+  pnh.param("min_recall", g_expected.min_recall, g_expected.min_recall);
+  pnh.param("obj_ids", g_expected.obj_ids, g_expected.obj_ids);
+  pnh.param("scene", g_expected.scene, g_expected.scene);
+  pnh.param("image", g_expected.image, g_expected.image);
+  pnh.param("max_adds", g_expected.max_adds, g_expected.max_adds);
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  return RUN_ALL_TESTS();
+}
