@@ -12,6 +12,7 @@
 
 #include "stocs/base_sampler.h"
 #include "stocs/congruent_set_matcher.h"
+#include "stocs/free_space_check.h"
 #include "stocs/icp_refiner.h"
 #include "stocs/lcp_scorer.h"
 #include "stocs/model_cache.h"
@@ -25,6 +26,7 @@ struct StocsParams {
   float max_fit_rms = 0.008f;  ///< metres: congruent sets whose rigid fit is worse are dropped
   LcpParams lcp;
   IcpParams icp;
+  FreeSpaceParams free_space;
   int bases = 100;  ///< bases per object
   /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.
   int instances = 1;
@@ -77,7 +79,12 @@ class StocsEstimator {
  public:
   StocsEstimator(const PreparedModel& model, const StocsParams& params);
 
-  PoseEstimate estimate(const SoftSegment& segment) const;
+  /// With `free_space` (the frame's organized cloud), the refined candidates compete by their
+  /// objective times (1 - FreeSpaceCheck::violation): of poses that explain the segment alike, the
+  /// one that puts no surface where the sensor sees through wins. Reported scores stay the
+  /// objective's.
+  PoseEstimate estimate(const SoftSegment& segment,
+                        const FreeSpaceCheck* free_space = nullptr) const;
 
   const StocsParams& params() const { return params_; }
 

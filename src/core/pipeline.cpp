@@ -1,6 +1,10 @@
 #include "stocs/pipeline.h"
 
 #include <chrono>
+#include <optional>
+
+#include "stocs/error.h"
+#include "stocs/free_space_check.h"
 
 namespace stocs {
 
@@ -18,7 +22,18 @@ ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   ObjectEstimate result;
   result.segment_points = segment.size();
-  result.estimate = StocsEstimator(model, params.stocs).estimate(segment);
+  std::optional<CameraIntrinsics> camera;
+  std::optional<FreeSpaceCheck> free_space;
+  if (params.stocs.free_space.enabled) {
+    try {
+      camera = intrinsicsFromCloud(cloud);
+      free_space.emplace(cloud, *camera, params.stocs.free_space);
+    } catch (const InputError&) {
+      // Too few valid points to recover the camera: nothing is known about free space either.
+    }
+  }
+  result.estimate =
+      StocsEstimator(model, params.stocs).estimate(segment, free_space ? &*free_space : nullptr);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

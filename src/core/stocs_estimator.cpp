@@ -47,18 +47,22 @@ bool higherScore(const Hypothesis& a, const Hypothesis& b) {
 }
 
 /// Point-to-plane refinement of `h`, kept when it does not lower the objective by more than 10%
-/// (a diverged refinement keeps the unrefined pose).
+/// (a diverged refinement keeps the unrefined pose); then, with a free-space check, the score is
+/// discounted by the share of the pose's visible surface in free space.
 Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
-                  const LcpScorer& scorer) {
+                  const LcpScorer& scorer, const FreeSpaceCheck* free_space) {
   Hypothesis out = h;
   out.polished = true;
-  if (!icp) return out;
-  const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region);
-  const float score = scorer.score(model, pose, h.region);
-  if (score < 0.9f * h.score) return out;
-  out.pose = pose;
-  out.score = score;
-  out.refined = !pose.isApprox(h.pose);
+  if (icp) {
+    const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region);
+    const float score = scorer.score(model, pose, h.region);
+    if (score >= 0.9f * h.score) {
+      out.pose = pose;
+      out.score = score;
+      out.refined = !pose.isApprox(h.pose);
+    }
+  }
+  if (free_space) out.score *= 1.0f - free_space->violation(model, out.pose);
   return out;
 }
 
@@ -70,13 +74,14 @@ Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefine
 std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           size_t refined_bases, size_t count,
                                           const ObjectModel& model, const SoftSegment& segment,
-                                          const LcpScorer& scorer, const StocsParams& params) {
+                                          const LcpScorer& scorer, const StocsParams& params,
+                                          const FreeSpaceCheck* free_space) {
   const size_t first = std::min(refined_bases, ranked.size());
   std::optional<IcpRefiner> icp;
   if (params.icp.enabled) icp.emplace(segment, params.icp);
   std::vector<Hypothesis> pool;
   for (size_t k = 0; k < first; ++k) {
-    pool.push_back(refine(ranked[k], model, icp ? &*icp : nullptr, scorer));
+    pool.push_back(refine(ranked[k], model, icp ? &*icp : nullptr, scorer, free_space));
   }
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
@@ -92,7 +97,7 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     if (taken.size() == count) break;
     if (!taken.empty() && !isNew(h)) continue;
     if (!h.polished) {
-      h = refine(h, model, icp ? &*icp : nullptr, scorer);
+      h = refine(h, model, icp ? &*icp : nullptr, scorer, free_space);
       if (!taken.empty() && !isNew(h)) continue;  // refinement moved it onto a taken instance
     }
     taken.push_back(h);
@@ -112,6 +117,7 @@ void StocsParams::validate() const {
   congruent.validate();
   lcp.validate();
   icp.validate();
+  free_space.validate();
   if (!(max_fit_rms > 0.0f && max_fit_rms <= 0.1f)) {
     throw InputError(fmt::format("rigid fit RMS limit {} m is outside (0, 0.1]", max_fit_rms));
   }
@@ -137,7 +143,8 @@ StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& pa
   params_.validate();
 }
 
-PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
+PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
+                                      const FreeSpaceCheck* free_space) const {
   const Clock::time_point start = Clock::now();
   PoseEstimate result;
   if (segment.size() < 4) {
@@ -235,7 +242,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment) const {
   }
   const Clock::time_point t = Clock::now();
   result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
-                                     model, segment, scorer, params_);
+                                     model, segment, scorer, params_, free_space);
   if (params_.icp.enabled) result.stages.refinement = secondsSince(t);
   result.found = true;
   const InstancePose& best = result.instances.front();

@@ -301,6 +301,10 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   icp.get("normal_angle_deg", p.stocs.icp.normal_angle_deg);
   icp.get("candidates", p.stocs.icp.candidates);
   icp.rejectUnknownKeys();
+  MapReader free_space = stocs.map("free_space");
+  free_space.get("enabled", p.stocs.free_space.enabled);
+  free_space.get("margin", p.stocs.free_space.margin);
+  free_space.rejectUnknownKeys();
   stocs.get("bases", p.stocs.bases);
   stocs.get("time_budget", p.stocs.time_budget);
   stocs.get("seed", p.stocs.seed);

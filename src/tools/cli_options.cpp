@@ -68,6 +68,14 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
   cmd.add_option("--icp-iterations", p.stocs.icp.iterations, "ICP iterations")->group(stocs);
   cmd.add_option("--icp-distance", p.stocs.icp.max_distance, "ICP correspondence radius, m")
       ->group(stocs);
+  cmd.add_option("--free-space", p.stocs.free_space.enabled,
+                 "Rank refined poses down by their surface in space the sensor sees through "
+                 "(true/false)")
+      ->group(stocs);
+  cmd.add_option("--free-space-margin", p.stocs.free_space.margin,
+                 "A model point in front of the measured surface by more than this is in free "
+                 "space, m")
+      ->group(stocs);
 }
 
 void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,

@@ -83,6 +83,8 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
   EXPECT_EQ(p.stocs.lcp.coarse_ratio, d.stocs.lcp.coarse_ratio);
   EXPECT_EQ(p.stocs.icp.candidates, d.stocs.icp.candidates);
+  EXPECT_EQ(p.stocs.free_space.enabled, d.stocs.free_space.enabled);
+  EXPECT_EQ(p.stocs.free_space.margin, d.stocs.free_space.margin);
   EXPECT_EQ(p.stocs.icp.enabled, d.stocs.icp.enabled);
   EXPECT_EQ(p.stocs.icp.iterations, d.stocs.icp.iterations);
   EXPECT_EQ(p.stocs.icp.max_distance, d.stocs.icp.max_distance);
@@ -121,7 +123,7 @@ estimation:
   segment: {min_probability: 0.3, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
   stocs: {bases: 40, seed: 9, instances: 4, instance_separation: 0.2,
-          icp: {enabled: false, candidates: 3},
+          icp: {enabled: false, candidates: 3}, free_space: {enabled: false, margin: 0.02},
           lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
   const NodeConfig c = loadNodeConfig(file);
@@ -165,6 +167,8 @@ estimation:
   EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_fraction, 0.5f);
   EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_ratio, 0.3f);
   EXPECT_EQ(c.estimation.stocs.icp.candidates, 3);
+  EXPECT_FALSE(c.estimation.stocs.free_space.enabled);
+  EXPECT_FLOAT_EQ(c.estimation.stocs.free_space.margin, 0.02f);
   EXPECT_EQ(c.estimation.stocs.instances, 4);
   EXPECT_FLOAT_EQ(c.estimation.stocs.instance_separation, 0.2f);
 }

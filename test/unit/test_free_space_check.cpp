@@ -1,0 +1,81 @@
+// The free-space check on a hand-made scene: a flat wall 1 m away seen by a small camera, and model
+// samples in front of it, on it, behind it, facing away, off the image and over missing pixels.
+#include <gtest/gtest.h>
+
+#include <limits>
+
+#include "stocs/error.h"
+#include "stocs/free_space_check.h"
+
+namespace stocs {
+namespace {
+
+constexpr int kSize = 20;
+
+CameraIntrinsics camera() {
+  return {20.0, 20.0, 9.5, 9.5, kSize, kSize};
+}
+
+/// Every pixel sees the plane z = 1 m, except column 0, which measured nothing.
+OrganizedCloud wall() {
+  OrganizedCloud cloud(kSize, kSize);
+  const CameraIntrinsics k = camera();
+  for (int v = 0; v < kSize; ++v) {
+    for (int u = 0; u < kSize; ++u) {
+      const float x = static_cast<float>((u - k.cx) / k.fx),
+                  y = static_cast<float>((v - k.cy) / k.fy);
+      cloud.points[v * kSize + u] =
+          u == 0 ? Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN())
+                 : Eigen::Vector3f(x, y, 1);
+    }
+  }
+  return cloud;
+}
+
+/// Samples at (x, 0, z) with normals towards the camera unless `away`.
+ObjectModel samples(const std::vector<std::pair<float, float>>& xz, bool away = false) {
+  ObjectModel m;
+  for (const auto& [x, z] : xz) {
+    m.points.emplace_back(x, 0, z);
+    m.normals.emplace_back(0, 0, away ? 1 : -1);
+  }
+  return m;
+}
+
+TEST(FreeSpaceCheck, CountsCameraFacingSamplesInFrontOfTheMeasuredSurface) {
+  const OrganizedCloud cloud = wall();
+  const CameraIntrinsics k = camera();
+  const FreeSpaceCheck check(cloud, k, FreeSpaceParams{});
+  const Eigen::Isometry3f identity = Eigen::Isometry3f::Identity();
+  // On the wall, 5 mm in front (within the 10 mm margin), and behind it: none in free space.
+  EXPECT_FLOAT_EQ(check.violation(samples({{0, 1.0f}, {0.1f, 0.995f}, {0.2f, 1.2f}}), identity),
+                  0.0f);
+  // 5 cm in front of the wall: the sensor saw through it.
+  EXPECT_FLOAT_EQ(check.violation(samples({{0, 0.95f}, {0.1f, 1.0f}}), identity), 0.5f);
+  // Facing away, off the image (x = 2 m at z = 0.9 m), over the unmeasured column 0 (u = 0 at
+  // x = -0.475 z): not judged.
+  EXPECT_FLOAT_EQ(check.violation(samples({{0, 0.9f}}, true), identity), 0.0f);
+  EXPECT_FLOAT_EQ(check.violation(samples({{2.0f, 0.9f}, {-0.475f * 0.9f, 0.9f}}), identity), 0.0f);
+  // The pose moves the model: 10 cm towards the camera puts the on-wall sample in free space.
+  Eigen::Isometry3f closer = Eigen::Isometry3f::Identity();
+  closer.translation() = Eigen::Vector3f(0, 0, -0.1f);
+  EXPECT_FLOAT_EQ(check.violation(samples({{0, 1.0f}}), closer), 1.0f);
+  // Turned half around about y, the sample faces away from the camera and is not judged.
+  Eigen::Isometry3f turned = Eigen::Isometry3f::Identity();
+  turned.linear() = Eigen::AngleAxisf(3.14159265f, Eigen::Vector3f::UnitY()).toRotationMatrix();
+  turned.translation() = Eigen::Vector3f(0, 0, 1.9f);  // puts (0, 0, 1) at z = 0.9
+  EXPECT_FLOAT_EQ(check.violation(samples({{0, 1.0f}}), turned), 0.0f);
+}
+
+TEST(FreeSpaceCheck, RejectsBadParametersAndMismatchedIntrinsics) {
+  const OrganizedCloud cloud = wall();
+  const CameraIntrinsics k = camera();
+  EXPECT_THROW(FreeSpaceCheck(cloud, k, FreeSpaceParams{true, 0.0f}), InputError);
+  EXPECT_THROW(FreeSpaceCheck(cloud, k, FreeSpaceParams{true, 0.5f}), InputError);
+  CameraIntrinsics wrong = k;
+  wrong.width = 640;
+  EXPECT_THROW(FreeSpaceCheck(cloud, wrong, FreeSpaceParams{}), InputError);
+}
+
+}  // namespace
+}  // namespace stocs
