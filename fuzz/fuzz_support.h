@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,15 +15,20 @@
 
 namespace stocs::fuzz {
 
-/// A folder private to this process (parallel fuzzers must not share files), made once.
+/// A folder private to this process (parallel fuzzers must not share files), made once and
+/// removed at exit. Never freed: the exit handler still needs it after static destruction.
 inline const std::filesystem::path& scratchDir() {
-  static const std::filesystem::path dir = [] {
-    const std::filesystem::path d =
-        std::filesystem::temp_directory_path() / ("stocs_fuzz_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
+  static const std::filesystem::path* dir = [] {
+    const auto* d = new std::filesystem::path(std::filesystem::temp_directory_path() /
+                                              ("stocs_fuzz_" + std::to_string(::getpid())));
+    std::filesystem::create_directories(*d);
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(*dir, ec);
+    });
     return d;
   }();
-  return dir;
+  return *dir;
 }
 
 /// Replaces `file` (creating its folder) with the fuzz input.

@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 #include <vector>
 
 #include "fuzz_support.h"
@@ -91,11 +92,17 @@ void cacheSeeds(const fs::path& corpus) {
   const std::string model = stocs::fuzz::writeCacheFuzzModel(dir);
   const stocs::ModelCache cache(dir / "cache");
   stocs::CacheReport report;
-  cache.load(model, stocs::fuzz::kCacheModelUnitScale, stocs::fuzz::cacheFuzzParams(), &report);
+  const stocs::PreparedModel prepared =
+      cache.load(model, stocs::fuzz::kCacheModelUnitScale, stocs::fuzz::cacheFuzzParams(), &report);
   const std::string entry = fileBytes(report.entry);
   writeSeed(corpus, "fuzz_model_cache", "entry", std::string(1, '\0') + entry);
   writeSeed(corpus, "fuzz_model_cache", "payload",
             std::string(1, '\1') + entry.substr(sizeof(stocs::fuzz::CacheEntryHeader)));
+  std::ostringstream map(std::ios::binary);
+  ByteWriter ppf;
+  ppf.put(static_cast<uint16_t>(prepared.model.size()));
+  prepared.ppf_map.write(map);
+  writeSeed(corpus, "fuzz_ppf_map", "box_map", ppf.append(map.str()).bytes());
 }
 
 ByteWriter cloudHeader(uint32_t width, uint32_t height, uint32_t point_step, uint32_t row_step) {
@@ -153,6 +160,5 @@ int main(int argc, char** argv) {
   bopSeeds(corpus);
   cacheSeeds(corpus);
   rosSeeds(corpus);
-  fs::remove_all(stocs::fuzz::scratchDir());
   return 0;
 }

@@ -14,10 +14,11 @@ namespace stocs::fuzz {
 
 constexpr float kCacheModelUnitScale = 0.001f;  // the model file is in mm, like BOP models
 
-/// Coarse sampling keeps the rebuild after each rejected entry fast.
+/// Coarse sampling and few viewpoints keep the rebuild after each rejected entry fast.
 inline ModelPreparationParams cacheFuzzParams() {
   ModelPreparationParams p;
-  p.sampling.sampling_ratio = 0.25f;
+  p.sampling.sampling_ratio = 0.5f;
+  p.sampling.orientation_viewpoints = 6;
   return p;
 }
 
