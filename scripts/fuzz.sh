@@ -10,6 +10,7 @@ source "$(dirname "$0")/common.sh"
 SECONDS_PER_TARGET="${1:-300}"  # not SECONDS: bash's own clock, used below
 shift || true
 OUT="$REPO/build/fuzz"
+mkdir -p "$OUT"
 
 cmake -S "$REPO" -B "$OUT" -DSTOCS_WITH_ROS=OFF -DSTOCS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$OUT.cmake.log" 2>&1 ||
