@@ -17,6 +17,7 @@ PACKAGES=(
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libnanoflann-dev
   libxxhash-dev
   gnuplot-nox
+  clang libclang-rt-14-dev libomp-14-dev
 )
 
 missing=()

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs dependencies, builds, and runs every test: the catkin gtests (unit, CLI and, when
 # STOCS_DATASETS names the real-data folder, the real-frame acceptance tests), then the same unit
-# tests in an AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core.
-# Exits non-zero when anything fails. STOCS_SKIP_SANITIZERS=1 skips the sanitizer build.
+# tests in an AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core, then a short
+# run of every fuzz target (scripts/fuzz.sh).
+# Exits non-zero when anything fails. STOCS_SKIP_SANITIZERS=1 skips the sanitizer build,
+# STOCS_SKIP_FUZZ=1 the fuzzing; STOCS_FUZZ_SECONDS sets the time per fuzz target (default 15).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 
@@ -31,5 +33,10 @@ if [ "${STOCS_SKIP_SANITIZERS:-0}" != 1 ]; then
   # halt_on_error: any sanitizer report fails the test that triggered it.
   ASAN_OPTIONS=detect_leaks=1:halt_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir "$SAN" -j"$JOBS" --output-on-failure
+fi
+if [ "${STOCS_SKIP_FUZZ:-0}" != 1 ]; then
+  # 9 targets x 15 s plus the fuzz build (about 4.6 min of CPU from a cold ccache, seconds when
+  # warm) keeps this stage within 5 minutes on 2 cores.
+  "$REPO/scripts/fuzz.sh" "${STOCS_FUZZ_SECONDS:-15}"
 fi
 echo "run_tests: all tests passed"

@@ -51,6 +51,10 @@ class PpfQuantizer {
   uint32_t keyCount() const {
     return static_cast<uint32_t>(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_;
   }
+  /// False when the bins are too many for 32-bit keys (keyCount and keys would wrap).
+  bool keysFit() const {
+    return uint64_t(distance_bins_) * angle_bins_ * angle_bins_ * angle_bins_ <= UINT32_MAX;
+  }
 
   /// Key of the feature's own bin; false when the distance is beyond the range.
   bool key(const PpfFeature& f, uint32_t& out) const;

@@ -14,6 +14,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "model_file_check.h"
 #include "stocs/error.h"
 #include "stocs/mesh.h"
 
@@ -62,8 +63,10 @@ MeshData loadMesh(const std::string& path, float unit_scale) {
     QuietPcl quiet;
     int rc = -1;
     if (ext == ".ply") {
+      detail::checkPlyHeader(path);
       rc = pcl::io::loadPLYFile(path, mesh);
     } else if (ext == ".pcd") {
+      detail::checkPcdHeader(path);
       rc = pcl::io::loadPCDFile(path, mesh.cloud);
     } else {
       throw InputError(

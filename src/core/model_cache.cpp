@@ -108,7 +108,15 @@ PreparedModel readEntry(const std::filesystem::path& file, uint64_t key) {
         fmt::format("format version {} is not {}", h.version, ModelCache::kFormatVersion));
   }
   if (h.key != key) throw InputError("entry belongs to other model bytes or parameters");
-  if (h.payload_size > (uint64_t{1} << 34)) throw InputError("payload size is implausible");
+  // Compared with the file before allocating: a corrupt size must not allocate gigabytes.
+  const std::streamoff payload_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const uint64_t available = static_cast<uint64_t>(in.tellg() - payload_start);
+  in.seekg(payload_start);
+  if (h.payload_size > available) {
+    throw InputError(fmt::format("payload is truncated ({} bytes announced, {} present)",
+                                 h.payload_size, available));
+  }
   std::string payload(h.payload_size, '\0');
   if (!in.read(payload.data(), static_cast<std::streamsize>(payload.size()))) {
     throw InputError("payload is truncated");

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <istream>
 #include <ostream>
 
@@ -31,9 +33,17 @@ std::vector<T> readVector(std::istream& in, uint64_t max_size) {
   const uint64_t n = readPod<uint64_t>(in);
   if (n > max_size)
     throw InputError(fmt::format("PPF map array of {} entries exceeds {}", n, max_size));
-  std::vector<T> v(n);
-  if (!in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(T)))) {
-    throw InputError("PPF map is truncated");
+  // Grown chunk by chunk as the bytes arrive: a corrupt count must not allocate gigabytes before
+  // the stream turns out to be short (found by fuzz_ppf_map).
+  constexpr uint64_t kChunk = 1 << 16;
+  std::vector<T> v;
+  while (v.size() < n) {
+    const size_t done = v.size();
+    v.resize(done + std::min(kChunk, n - done));
+    if (!in.read(reinterpret_cast<char*>(v.data() + done),
+                 static_cast<std::streamsize>((v.size() - done) * sizeof(T)))) {
+      throw InputError("PPF map is truncated");
+    }
   }
   return v;
 }
@@ -65,6 +75,11 @@ PpfHashMap PpfHashMap::build(const ObjectModel& model, const PpfParams& params) 
   map.quantizer_ =
       PpfQuantizer(params.distance_step, params.angle_step_deg * static_cast<float>(M_PI) / 180.0f,
                    map.max_distance_);
+  if (!map.quantizer_.keysFit()) {
+    throw InputError(
+        fmt::format("PPF steps {} m and {} deg give too many bins for a model of diameter {} m",
+                    params.distance_step, params.angle_step_deg, model.diameter));
+  }
 
   // Counting sort of all stored pairs by key: one pass to count, one to place.
   const uint32_t key_count = map.quantizer_.keyCount();
@@ -134,6 +149,8 @@ PpfHashMap PpfHashMap::read(std::istream& in, size_t model_size) {
     throw InputError("PPF map header holds out-of-range values");
   }
   map.quantizer_ = PpfQuantizer(distance_step, angle_step, map.max_distance_);
+  // Wrapped 32-bit keys would index past the occupancy bits in every lookup.
+  if (!map.quantizer_.keysFit()) throw InputError("PPF map header gives too many bins");
   const uint32_t key_count = map.quantizer_.keyCount();
   map.keys_ = readVector<uint32_t>(in, key_count);
   map.offsets_ = readVector<uint32_t>(in, uint64_t{key_count} + 1);

@@ -31,8 +31,9 @@ stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg) {
     const auto field =
         std::find_if(msg.fields.begin(), msg.fields.end(),
                      [&](const sensor_msgs::PointField& f) { return f.name == axis; });
+    // In 64 bits: a 32-bit offset + 4 wraps for offsets near 2^32 (found by fuzz_ros_cloud).
     if (field == msg.fields.end() || field->datatype != sensor_msgs::PointField::FLOAT32 ||
-        field->offset + 4 > msg.point_step) {
+        uint64_t{field->offset} + sizeof(float) > msg.point_step) {
       throw InputError(fmt::format("cloud has no float32 field '{}' within its point step", axis));
     }
     offsets[a] = field->offset;

@@ -40,11 +40,17 @@ cv::Mat imageView(const sensor_msgs::ImageConstPtr& msg) {
   if (msg->width == 0 || msg->height == 0) {
     throw InputError(fmt::format("image is empty ({}x{})", msg->width, msg->height));
   }
-  if (msg->step < row_bytes || msg->data.size() < static_cast<size_t>(msg->step) * msg->height) {
-    throw InputError(
-        fmt::format("image {}x{} '{}' has step {} and {} data bytes; it needs at least {} and {}",
-                    msg->width, msg->height, msg->encoding, msg->step, msg->data.size(), row_bytes,
-                    row_bytes * msg->height));
+  // cv_bridge and cv::Mat throw their own exceptions unless the data is exactly step x height
+  // bytes and the step a whole number of channel values (found by fuzz_ros_image).
+  if (msg->step % CV_ELEM_SIZE1(type) != 0) {
+    throw InputError(fmt::format("image '{}' has step {}, not a multiple of its {}-byte values",
+                                 msg->encoding, msg->step, CV_ELEM_SIZE1(type)));
+  }
+  if (msg->step < row_bytes || msg->data.size() != static_cast<size_t>(msg->step) * msg->height) {
+    throw InputError(fmt::format(
+        "image {}x{} '{}' has step {} and {} data bytes; it needs a step of at least {} and "
+        "step x height data bytes",
+        msg->width, msg->height, msg->encoding, msg->step, msg->data.size(), row_bytes));
   }
   return cv_bridge::toCvShare(msg)->image;
 }

@@ -106,6 +106,25 @@ TEST_F(ModelCacheTest, TruncatedStaleAndForeignEntriesAreRebuilt) {
   EXPECT_NE(report.detail.find("not a stocs cache file"), std::string::npos) << report.detail;
 }
 
+// Regression: a corrupt payload size in the header allocated that many bytes (up to 16 GB)
+// before the short file was noticed.
+TEST_F(ModelCacheTest, AnnouncedPayloadLargerThanTheFileIsTruncation) {
+  const ModelCache cache(dir_ / "cache");
+  CacheReport report;
+  cache.load(model_file_, 0.001f, params_, &report);
+  {
+    std::fstream f(report.entry, std::ios::in | std::ios::out | std::ios::binary);
+    const uint64_t huge = uint64_t{1} << 33;
+    f.seekp(24);  // payload_size: after magic, version, reserved and key
+    f.write(reinterpret_cast<const char*>(&huge), sizeof huge);
+  }
+  cache.load(model_file_, 0.001f, params_, &report);
+  EXPECT_EQ(report.outcome, CacheOutcome::kRebuilt);
+  EXPECT_NE(report.detail.find("payload is truncated (8589934592 bytes announced"),
+            std::string::npos)
+      << report.detail;
+}
+
 TEST_F(ModelCacheTest, AnUnwritableFolderStillGivesTheModel) {
   std::ofstream(dir_ / "blocker") << "a file where the cache folder should be";
   const ModelCache cache(dir_ / "blocker" / "cache");

@@ -1,6 +1,8 @@
 // The model PPF map: voting (every model pair is found), lookups, and serialisation.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include <map>
 #include <set>
 #include <sstream>
@@ -122,6 +124,53 @@ TEST_F(PpfHashMapTest, ReadRejectsTruncatedOrInconsistentData) {
   bad[0] = bad[1] = bad[2] = bad[3] = '\xff';  // distance step becomes NaN
   std::istringstream bad_header(bad);
   EXPECT_THROW(PpfHashMap::read(bad_header, model_.size()), InputError);
+}
+
+/// What PpfHashMap::read says about `bytes`, or "" when it accepts them.
+std::string readError(const std::string& bytes, size_t model_size) {
+  std::istringstream in(bytes);
+  try {
+    PpfHashMap::read(in, model_size);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Regression (fuzz_ppf_map): a corrupt pair count allocated up to 8 GB before the short stream
+// was noticed.
+TEST_F(PpfHashMapTest, CorruptCountsFailWithoutAllocatingWhatTheyClaim) {
+  std::stringstream buffer;
+  map_.write(buffer);
+  std::string bytes = buffer.str();
+  const auto count_at = [&](size_t offset) {
+    uint64_t n = 0;
+    std::memcpy(&n, bytes.data() + offset, sizeof n);
+    return n;
+  };
+  const size_t keys_at = 4 * sizeof(float);
+  const size_t offsets_at = keys_at + 8 + 4 * count_at(keys_at);
+  const size_t pairs_at = offsets_at + 8 + 4 * count_at(offsets_at);
+  const uint64_t claimed = uint64_t{2'000'000'000};
+  bytes.replace(pairs_at, 8, reinterpret_cast<const char*>(&claimed), 8);
+  EXPECT_EQ(readError(bytes, model_.size()), "PPF map is truncated");
+}
+
+// Regression (found while fuzzing PpfHashMap::read): fine steps over a long range made the key
+// count wrap in 32 bits, so lookups indexed past the occupancy bits.
+TEST_F(PpfHashMapTest, MoreBinsThan32BitKeysAreRejected) {
+  std::stringstream buffer;
+  map_.write(buffer);
+  std::string bytes = buffer.str();
+  const float fine[4] = {1e-4f, 0.011f, 0.0f, 19.0f};  // distance step, angle step, min, max
+  bytes.replace(0, sizeof fine, reinterpret_cast<const char*>(fine), sizeof fine);
+  EXPECT_EQ(readError(bytes, model_.size()), "PPF map header gives too many bins");
+  PpfParams fine_params;
+  fine_params.distance_step = 1e-4f;
+  fine_params.angle_step_deg = 1.0f;
+  ObjectModel huge = model_;
+  huge.diameter = 10.0f;
+  EXPECT_THROW(PpfHashMap::build(huge, fine_params), InputError);
 }
 
 TEST(PpfParams, OutOfRangeValuesAreRejected) {

@@ -83,6 +83,14 @@ TEST(CloudConversion, BadCloudsAreNamed) {
   EXPECT_NE(conversionError(truncated).find("data bytes"), std::string::npos);
 }
 
+// Regression (fuzz_ros_cloud): offset + 4 wrapped in 32 bits, so an offset near 2^32 passed the
+// point-step check and the copy read far outside the data.
+TEST(CloudConversion, FieldOffsetNearTheTopOfUint32IsRejected) {
+  sensor_msgs::PointCloud2 wrapped = cloudToMsg(smallCloud(), cv::Mat());
+  wrapped.fields[2].offset = 0xFFFFFFFFu;
+  EXPECT_EQ(conversionError(wrapped), "cloud has no float32 field 'z' within its point step");
+}
+
 TEST(CloudConversion, DepthImagesInMillimetresAndMetresGiveTheSameCloud) {
   sensor_msgs::CameraInfo info;
   info.width = 4;

@@ -64,6 +64,26 @@ TEST(ImageConversion, BadProbabilityImagesAreNamed) {
   EXPECT_NE(errorOf([&] { probabilityFromImage(empty, 10000); }).find("empty"), std::string::npos);
 }
 
+// Regression (fuzz_ros_image): more data than step x height passed our check and cv_bridge then
+// threw its own exception, which is not an InputError.
+TEST(ImageConversion, DataLongerThanStepTimesHeightIsAnInputError) {
+  sensor_msgs::ImagePtr longer = image("mono16", cv::Mat(2, 2, CV_16UC1, cv::Scalar(700)));
+  longer->data.push_back(0);
+  EXPECT_NE(errorOf([&] { probabilityFromImage(longer, 10000); }).find("9 data bytes"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { boundaryFromImage(longer); }).find("step x height"), std::string::npos);
+}
+
+// Regression (fuzz_ros_image): a step that is not a whole number of values made cv::Mat throw
+// cv::Exception.
+TEST(ImageConversion, StepThatSplitsAValueIsAnInputError) {
+  sensor_msgs::ImagePtr odd = image("mono16", cv::Mat(2, 2, CV_16UC1, cv::Scalar(700)));
+  odd->step = 5;
+  odd->data.resize(10);
+  EXPECT_NE(errorOf([&] { probabilityFromImage(odd, 10000); }).find("not a multiple of its 2-byte"),
+            std::string::npos);
+}
+
 TEST(ImageConversion, MultichannelImagesSplitIntoChannels) {
   std::vector<cv::Mat> planes = {cv::Mat(2, 3, CV_16UC1, cv::Scalar(0)),
                                  cv::Mat(2, 3, CV_16UC1, cv::Scalar(10000)),

@@ -1,0 +1,10 @@
+// PLY model files (ascii and binary, points or polygon meshes) through stocs::loadMesh: any input
+// must give a model or an InputError, never a crash, leak or undefined behaviour.
+#include "fuzz_support.h"
+#include "stocs/mesh.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::filesystem::path file = stocs::fuzz::scratchDir() / "model.ply";
+  stocs::fuzz::parseInputAs(file, data, size, [&] { stocs::loadMesh(file.string(), 0.001f); });
+  return 0;
+}

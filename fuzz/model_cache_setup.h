@@ -1,0 +1,50 @@
+#pragma once
+// The model and preparation parameters whose cache entries fuzz_model_cache feeds to ModelCache,
+// shared with the corpus generator so the seed entries carry the key the fuzzer's cache expects.
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "stocs/model_cache.h"
+#include "stocs/ply_writer.h"
+#include "stocs/shape_meshes.h"
+
+namespace stocs::fuzz {
+
+constexpr float kCacheModelUnitScale = 0.001f;  // the model file is in mm, like BOP models
+
+/// Coarse sampling and few viewpoints keep the rebuild after each rejected entry fast.
+inline ModelPreparationParams cacheFuzzParams() {
+  ModelPreparationParams p;
+  p.sampling.sampling_ratio = 0.5f;
+  p.sampling.orientation_viewpoints = 6;
+  return p;
+}
+
+/// Writes the model file (a 60 x 40 x 30 mm box) into `dir` and returns its path.
+inline std::string writeCacheFuzzModel(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / "box.ply";
+  writePly(file, boxMesh({0.06f, 0.04f, 0.03f}), 1000.0f);
+  return file.string();
+}
+
+/// The header of a cache entry, as model_cache.cpp lays it out (format version 1).
+struct CacheEntryHeader {
+  char magic[8];
+  uint32_t version;
+  uint32_t reserved;
+  uint64_t key;
+  uint64_t payload_size;
+  uint64_t payload_hash;
+};
+static_assert(sizeof(CacheEntryHeader) == 40);
+
+/// The key of an entry, from its file name `<stem>-<key as 16 hex digits>.stocsmap`.
+inline uint64_t entryKeyFromName(const std::filesystem::path& entry) {
+  const std::string stem = entry.stem().string();
+  return std::stoull(stem.substr(stem.rfind('-') + 1), nullptr, 16);
+}
+
+}  // namespace stocs::fuzz
