@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Reproduces every `stocs bench` / `stocs eval` figure of BENCHMARKS.md's method comparison and
+# real-frame sections. Builds nothing: runs the `stocs` tool given by STOCS_TOOL (default: the
+# catkin workspace's, from scripts/build.sh).
+#   scripts/bench_all.sh DATASETS OUT        e.g. scripts/bench_all.sh ../shared/datasets /tmp/bench
+# OUT receives:
+#   real/    every method on every dataset with its real network maps (only lmo-cat and
+#            rutgers-packed scene 0 have them; the others are skipped with a note), with the
+#            segmentation-threshold and time-budget sweeps
+#   sim/     every method on every dataset with simulator maps where no real map exists
+#            (presets mild and noisy, all frames), main table only
+#   seeds/   StoCS on the two real-map frames with seeds 1..10, ICP on and off (`stocs estimate`
+#            + `stocs eval`), summarised in seeds/summary.md
+# and log.txt with the load average before and after each part.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+[ $# -eq 2 ] || { echo "usage: $0 DATASETS OUT" >&2; exit 2; }
+data=$(cd "$1" && pwd)
+out=$2
+tool="${STOCS_TOOL:-$WS/devel/lib/stocs_ros/stocs}"
+[ -x "$tool" ] || { echo "no stocs tool at $tool (build it, or set STOCS_TOOL)" >&2; exit 2; }
+for d in lmo-cat rutgers-packed ycbv-0000 pcl-milk; do
+  [ -d "$data/$d" ] || { echo "$data/$d is missing" >&2; exit 2; }
+done
+mkdir -p "$out"
+log="$out/log.txt"
+note() { echo "$(date -u '+%F %T') load $(cut -d' ' -f1-3 /proc/loadavg): $*" | tee -a "$log"; }
+
+datasets=(--dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --dataset "$data/ycbv-0000"
+          --dataset "$data/pcl-milk")
+# One model cache for all parts, so that no run pays for preprocessing; a baseline run that
+# hangs is killed and counted as failed.
+common=(--methods stocs,stocs-hard,fpcs,kfpcs,ppf --cache-dir "$out/cache" --run-timeout 600)
+
+note "real maps: start"
+"$tool" bench "${datasets[@]}" --prob real --out "$out/real" "${common[@]}"
+note "real maps: done"
+
+note "simulator presets: start"
+"$tool" bench "${datasets[@]}" --prob sim:mild --prob sim:noisy --out "$out/sim" \
+  --no-threshold-sweep --no-budget-sweep "${common[@]}"
+note "simulator presets: done"
+
+# StoCS's spread over seeds on the real-map frames, ICP on and off: one `stocs estimate` per seed,
+# scored by `stocs eval`; per-object times come from --per-object.
+note "seeds: start"
+seeds="$out/seeds"
+mkdir -p "$seeds"
+summary="$seeds/summary.md"
+echo "| frame | ICP | seeds | ADD-S median / max (mm) | ADD-S < 10% diam. | < 2 cm, 10° | time median / max (s) | CPU median (s) |" > "$summary"
+echo "|---|---|---|---|---|---|---|---|" >> "$summary"
+for frame in lmo-cat:2 rutgers-packed:0; do
+  name=${frame%:*} scene=${frame##*:}
+  for icp in true false; do
+    run="$seeds/$name-icp-$icp"
+    mkdir -p "$run"
+    for seed in $(seq 1 10); do
+      "$tool" estimate --dataset "$data/$name" --scenes "$scene" --prob real --seed "$seed" \
+        --icp "$icp" --cache-dir "$out/cache" --out "$run/$seed.csv" \
+        --per-object "$run/$seed.objects.csv" 2> "$run/$seed.log"
+      "$tool" eval --dataset "$data/$name" --results "$run/$seed.csv" --prob real \
+        --targets-csv "$run/$seed.targets.csv" --markdown "$run/$seed.md" 2>> "$run/$seed.log"
+    done
+    # Columns by name: targets.csv (errors) and objects.csv (times), one row per seed each.
+    awk -F, -v frame="$name" -v icp="$icp" '
+      FNR == 1 { for (i = 1; i <= NF; i++) col[FILENAME, $i] = i; next }
+      FILENAME ~ /targets.csv$/ { adds[na++] = $col[FILENAME, "adds_mm"];
+        ok += $col[FILENAME, "adds_success"]; rt += $col[FILENAME, "rt_success"] }
+      FILENAME ~ /objects.csv$/ { t[nt++] = $col[FILENAME, "seconds"]; c[nc++] = $col[FILENAME, "cpu_seconds"] }
+      function sorted(a, n,   i, j, x) { for (i = 1; i < n; i++) { x = a[i];
+          for (j = i - 1; j >= 0 && a[j] > x; j--) a[j + 1] = a[j]; a[j + 1] = x } }
+      function median(a, n) { sorted(a, n); return n % 2 ? a[int(n / 2)] : (a[n / 2 - 1] + a[n / 2]) / 2 }
+      function maximum(a, n) { sorted(a, n); return a[n - 1] }
+      END { printf "| %s | %s | %d | %.1f / %.1f | %d/%d | %d/%d | %.3f / %.3f | %.3f |\n",
+              frame, icp == "true" ? "on" : "off", na, median(adds, na), maximum(adds, na), ok, na,
+              rt, na, median(t, nt), maximum(t, nt), median(c, nc) }' \
+      "$run"/*.targets.csv "$run"/*.objects.csv >> "$summary"
+  done
+done
+note "seeds: done"
+cat "$summary"
+echo "reports: $out/real/results.md, $out/sim/results.md, $summary"
