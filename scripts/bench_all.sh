@@ -9,8 +9,9 @@
 #            segmentation-threshold and time-budget sweeps
 #   sim/     every method on every dataset with simulator maps where no real map exists
 #            (presets mild and noisy, all frames), main table only
-#   seeds/   StoCS on the two real-map frames with seeds 1..10, ICP on and off (`stocs estimate`
-#            + `stocs eval`), summarised in seeds/summary.md
+#   seeds/   StoCS with seeds 1..10, ICP on and off (`stocs estimate` + `stocs eval`), on the two
+#            real-map frames and on a generated frame with exact truth (`stocs synth`, clean
+#            segmentation, noise-free depth), summarised in seeds/summary.md
 # and log.txt with the load average before and after each part.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
@@ -41,24 +42,29 @@ note "simulator presets: start"
   --no-threshold-sweep --no-budget-sweep "${common[@]}"
 note "simulator presets: done"
 
-# StoCS's spread over seeds on the real-map frames, ICP on and off: one `stocs estimate` per seed,
-# scored by `stocs eval`; per-object times come from --per-object.
+# StoCS's spread over seeds, ICP on and off: one `stocs estimate` per seed, scored by
+# `stocs eval`; per-object times come from --per-object.
 note "seeds: start"
 seeds="$out/seeds"
 mkdir -p "$seeds"
+generated="$seeds/generated"
+rm -rf "$generated"
+"$tool" synth --out "$generated" --objects 4 --distractors 0 --depth-noise 0 \
+  --segmentation clean --seed 1 --quiet
 summary="$seeds/summary.md"
-echo "| frame | ICP | seeds | ADD-S median / max (mm) | ADD-S < 10% diam. | < 2 cm, 10° | time median / max (s) | CPU median (s) |" > "$summary"
+echo "| frame | ICP | targets (seeds x objects) | ADD-S median / max (mm) | ADD-S < 10% diam. | < 2 cm, 10° | time median / max (s) | CPU median (s) |" > "$summary"
 echo "|---|---|---|---|---|---|---|---|" >> "$summary"
-for frame in lmo-cat:2 rutgers-packed:0; do
-  name=${frame%:*} scene=${frame##*:}
+for frame in "$data/lmo-cat:2" "$data/rutgers-packed:0" "$generated:0"; do
+  dir=${frame%:*} scene=${frame##*:}
+  name=$(basename "$dir")
   for icp in true false; do
     run="$seeds/$name-icp-$icp"
     mkdir -p "$run"
     for seed in $(seq 1 10); do
-      "$tool" estimate --dataset "$data/$name" --scenes "$scene" --prob real --seed "$seed" \
+      "$tool" estimate --dataset "$dir" --scenes "$scene" --prob real --seed "$seed" \
         --icp "$icp" --cache-dir "$out/cache" --out "$run/$seed.csv" \
         --per-object "$run/$seed.objects.csv" 2> "$run/$seed.log"
-      "$tool" eval --dataset "$data/$name" --results "$run/$seed.csv" --prob real \
+      "$tool" eval --dataset "$dir" --results "$run/$seed.csv" --prob real \
         --targets-csv "$run/$seed.targets.csv" --markdown "$run/$seed.md" 2>> "$run/$seed.log"
     done
     # Columns by name: targets.csv (errors) and objects.csv (times), one row per seed each.
