@@ -14,7 +14,8 @@
 #            base that passes it; OpenCV's PPF has no budget)
 #   seeds/   StoCS with seeds 1..10, ICP on and off (`stocs estimate` + `stocs eval`), on the two
 #            real-map frames and on a generated frame with exact truth (`stocs synth`, clean
-#            segmentation, noise-free depth), summarised in seeds/summary.md
+#            segmentation, noise-free depth), and the dove bin without its boundary map;
+#            summarised in seeds/summary.md
 # and log.txt with the load average before and after each part. STOCS_BENCH_PARTS selects parts
 # (default "real sim seeds"), e.g. to finish an interrupted run into the same OUT.
 set -euo pipefail
@@ -55,8 +56,9 @@ fi
 
 [[ $parts == *" seeds "* ]] || exit 0
 
-# StoCS's spread over seeds, ICP on and off: one `stocs estimate` per seed, scored by
-# `stocs eval`; per-object times come from --per-object.
+# StoCS's spread over seeds: one `stocs estimate` per seed, scored by `stocs eval`; per-object
+# times come from --per-object. A row per frame and setting: ICP on (the default) and off, and the
+# dove bin without its boundary map.
 note "seeds: start"
 seeds="$out/seeds"
 mkdir -p "$seeds"
@@ -65,37 +67,45 @@ rm -rf "$generated"
 "$tool" synth --out "$generated" --objects 4 --distractors 0 --depth-noise 0 \
   --segmentation clean --seed 1 --quiet
 summary="$seeds/summary.md"
-echo "| frame | ICP | targets (seeds x objects) | ADD-S median / max (mm) | ADD-S < 10% diam. | < 2 cm, 10° | time median / max (s) | CPU median (s) |" > "$summary"
+echo "| frame | setting | targets (seeds x objects) | ADD-S median / max (mm) | ADD-S < 10% diam. | < 2 cm, 10° | time median / max (s) | CPU median (s) |" > "$summary"
 echo "|---|---|---|---|---|---|---|---|" >> "$summary"
-for frame in "$data/lmo-cat:2" "$data/rutgers-packed:0" "$generated:0"; do
-  dir=${frame%:*} scene=${frame##*:}
+
+# seedRow DATASET SCENE SETTING [stocs estimate options...]: seeds 1..10, one summary row.
+seedRow() {
+  local dir=$1 scene=$2 setting=$3
+  shift 3
+  local name run seed
   name=$(basename "$dir")
-  for icp in true false; do
-    run="$seeds/$name-icp-$icp"
-    mkdir -p "$run"
-    for seed in $(seq 1 10); do
-      "$tool" estimate --dataset "$dir" --scenes "$scene" --prob real --seed "$seed" \
-        --icp "$icp" --cache-dir "$out/cache" --out "$run/$seed.csv" \
-        --per-object "$run/$seed.objects.csv" 2> "$run/$seed.log"
-      "$tool" eval --dataset "$dir" --results "$run/$seed.csv" --prob real \
-        --targets-csv "$run/$seed.targets.csv" --markdown "$run/$seed.md" 2>> "$run/$seed.log"
-    done
-    # Columns by name: targets.csv (errors) and objects.csv (times), one row per seed each.
-    awk -F, -v frame="$name" -v icp="$icp" '
-      FNR == 1 { for (i = 1; i <= NF; i++) col[FILENAME, $i] = i; next }
-      FILENAME ~ /targets.csv$/ { adds[na++] = $col[FILENAME, "adds_mm"];
-        ok += $col[FILENAME, "adds_success"]; rt += $col[FILENAME, "rt_success"] }
-      FILENAME ~ /objects.csv$/ { t[nt++] = $col[FILENAME, "seconds"]; c[nc++] = $col[FILENAME, "cpu_seconds"] }
-      function sorted(a, n,   i, j, x) { for (i = 1; i < n; i++) { x = a[i];
-          for (j = i - 1; j >= 0 && a[j] > x; j--) a[j + 1] = a[j]; a[j + 1] = x } }
-      function median(a, n) { sorted(a, n); return n % 2 ? a[int(n / 2)] : (a[n / 2 - 1] + a[n / 2]) / 2 }
-      function maximum(a, n) { sorted(a, n); return a[n - 1] }
-      END { printf "| %s | %s | %d | %.1f / %.1f | %d/%d | %d/%d | %.3f / %.3f | %.3f |\n",
-              frame, icp == "true" ? "on" : "off", na, median(adds, na), maximum(adds, na), ok, na,
-              rt, na, median(t, nt), maximum(t, nt), median(c, nc) }' \
-      "$run"/*.targets.csv "$run"/*.objects.csv >> "$summary"
+  run="$seeds/$name-${setting// /-}"
+  mkdir -p "$run"
+  for seed in $(seq 1 10); do
+    "$tool" estimate --dataset "$dir" --scenes "$scene" --prob real --seed "$seed" \
+      --cache-dir "$out/cache" --out "$run/$seed.csv" --per-object "$run/$seed.objects.csv" \
+      "$@" 2> "$run/$seed.log"
+    "$tool" eval --dataset "$dir" --results "$run/$seed.csv" --prob real \
+      --targets-csv "$run/$seed.targets.csv" --markdown "$run/$seed.md" 2>> "$run/$seed.log"
   done
+  # Columns by name: targets.csv (errors) and objects.csv (times), one row per target each.
+  awk -F, -v frame="$name" -v setting="$setting" '
+    FNR == 1 { for (i = 1; i <= NF; i++) col[FILENAME, $i] = i; next }
+    FILENAME ~ /targets.csv$/ { adds[na++] = $col[FILENAME, "adds_mm"];
+      ok += $col[FILENAME, "adds_success"]; rt += $col[FILENAME, "rt_success"] }
+    FILENAME ~ /objects.csv$/ { t[nt++] = $col[FILENAME, "seconds"]; c[nc++] = $col[FILENAME, "cpu_seconds"] }
+    function sorted(a, n,   i, j, x) { for (i = 1; i < n; i++) { x = a[i];
+        for (j = i - 1; j >= 0 && a[j] > x; j--) a[j + 1] = a[j]; a[j + 1] = x } }
+    function median(a, n) { sorted(a, n); return n % 2 ? a[int(n / 2)] : (a[n / 2 - 1] + a[n / 2]) / 2 }
+    function maximum(a, n) { sorted(a, n); return a[n - 1] }
+    END { printf "| %s | %s | %d | %.1f / %.1f | %d/%d | %d/%d | %.3f / %.3f | %.3f |\n",
+            frame, setting, na, median(adds, na), maximum(adds, na), ok, na, rt, na,
+            median(t, nt), maximum(t, nt), median(c, nc) }' \
+    "$run"/*.targets.csv "$run"/*.objects.csv >> "$summary"
+}
+
+for frame in "$data/lmo-cat:2" "$data/rutgers-packed:0" "$generated:0"; do
+  seedRow "${frame%:*}" "${frame##*:}" "ICP on" --icp true
+  seedRow "${frame%:*}" "${frame##*:}" "ICP off" --icp false
 done
+seedRow "$data/rutgers-packed" 0 "no boundary map" --boundaries off
 note "seeds: done"
 cat "$summary"
 echo "reports: $out/real/results.md, $out/sim/results.md, $summary"
