@@ -2,7 +2,14 @@
 //   delta            max(segment voxel size, model sampling radius), absolute: "the point accuracy
 //                    to ensure finding neighbors between source <-> target"; PCL's normalised
 //                    default (1 x the target's mean spacing) gives about the same, not reproducibly
-//   approx. overlap  0.5, PCL's default: the visible share of an object in clutter is unknown
+//   approx. overlap  PCL's default 0.5, scaled down by the ratio of the model's diameter to the
+//                    target's extent when the segment is larger than the object (clutter, or a
+//                    bin of identical instances). PCL draws bases up to 2 x overlap x the target's
+//                    bounding-box diagonal wide (ia_fpcs.hpp); the Super4PCS/OpenGR authors
+//                    advise dividing the overlap by how much larger the bounding box is than the
+//                    object (OpenGR issue #74), since a base wider than the object has no
+//                    congruent set on it. With 0.5 on the packed dove bin (8 instances) every
+//                    base spanned several boxes and no candidate was ever found.
 //   number of samples 100 model samples, as PCL's FPCS test (test_fpcs_ia_data.h); drawn here
 //   max. iterations  the StoCS base budget (one PCL iteration = one base with its congruent sets)
 //   max. time        the StoCS time budget rounded up to whole seconds (PCL counts whole seconds
@@ -57,6 +64,21 @@ pcl::PointCloud<pcl::Normal>::Ptr toNormals(const std::vector<Eigen::Vector3f>& 
   return cloud;
 }
 
+/// PCL's overlap for a target of bounding-box diagonal `target_extent` and a model of diameter
+/// `model_diameter`: the default 0.5, or less, so that bases are at most the object's diameter
+/// wide.
+float approxOverlap(float model_diameter, float target_extent) {
+  constexpr float kPclDefault = 0.5f;
+  if (!(target_extent > model_diameter) || !(model_diameter > 0)) return kPclDefault;
+  return kPclDefault * model_diameter / target_extent;
+}
+
+float boundingBoxDiagonal(const std::vector<Eigen::Vector3f>& points) {
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& p : points) box.extend(p);
+  return box.isEmpty() ? 0.0f : box.diagonal().norm();
+}
+
 }  // namespace
 
 unsigned fourPcsSeed(uint64_t seed) {
@@ -78,7 +100,7 @@ std::optional<BaselineHypothesis> alignFourPcs(FourPcs& aligner, const SoftSegme
   aligner.setInputTarget(toPoints(segment.points, target));
   aligner.setTargetNormals(toNormals(segment.normals, target));
   aligner.setDelta(std::max(input.params->segment.voxel_size, model.sampling_radius), false);
-  aligner.setApproxOverlap(0.5f);
+  aligner.setApproxOverlap(approxOverlap(model.diameter, boundingBoxDiagonal(segment.points)));
   aligner.setMaximumIterations(budget.bases);
   if (budget.time_budget > 0) {
     aligner.setMaxComputationTime(static_cast<int>(std::ceil(budget.time_budget)));  // whole s

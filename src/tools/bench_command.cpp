@@ -166,24 +166,25 @@ void execute(const BenchOptions& o, const BenchData& d, DatasetEvaluator& evalua
   r.child = runChild(
       childCommand(o, input, r), r.log, [&] { progress.update(); }, o.run_timeout);
   std::vector<BopResult> results;
-  std::map<Target, double> seconds;
+  std::map<Target, ObjectRun> timings;
   if (!r.child.ok()) {
     r.failure = fmt::format("{}, see {}", r.child.describe(), r.log.string());
   } else {
     try {
       results = readBopResults(r.results);
-      for (const ObjectRun& run : readObjectRuns(r.per_object)) seconds[run.target] = run.seconds;
+      for (const ObjectRun& run : readObjectRuns(r.per_object)) timings[run.target] = run;
     } catch (const InputError& e) {
       r.failure = fmt::format("unusable output: {}", e.what());
       results.clear();
-      seconds.clear();
+      timings.clear();
     }
   }
   r.targets = evaluator.evaluate(input.targets, results, r.results.string()).targets;
+  constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
   for (const TargetResult& t : r.targets) {
-    const auto it = seconds.find(t.target);
-    r.seconds.push_back(it == seconds.end() ? std::numeric_limits<double>::quiet_NaN()
-                                            : it->second);
+    const auto it = timings.find(t.target);
+    r.seconds.push_back(it == timings.end() ? kUnknown : it->second.seconds);
+    r.cpu_seconds.push_back(it == timings.end() ? kUnknown : it->second.cpu_seconds);
   }
   progress.finish(r.failure.empty() ? "ok" : "FAILED: " + r.failure);
 }

@@ -21,7 +21,8 @@ using Scope = std::optional<size_t>;  ///< one input, or every input pooled
 /// The targets and timings of the runs of one method at one setting, over a scope.
 struct Pool {
   std::vector<TargetErrors> errors;
-  std::vector<double> seconds;  ///< where known
+  std::vector<double> seconds;      ///< where known
+  std::vector<double> cpu_seconds;  ///< where known
   double peak_mb = 0;
   int failed_runs = 0;
 };
@@ -36,6 +37,7 @@ Pool pool(const BenchData& d, const std::string& method, Sweep sweep, double val
     for (size_t i = 0; i < r.targets.size(); ++i) {
       p.errors.push_back(r.targets[i].errors);
       if (!std::isnan(r.seconds[i])) p.seconds.push_back(r.seconds[i]);
+      if (!std::isnan(r.cpu_seconds[i])) p.cpu_seconds.push_back(r.cpu_seconds[i]);
     }
     p.peak_mb = std::max(p.peak_mb, r.child.peak_rss_mb);
     p.failed_runs += !r.failure.empty();
@@ -79,6 +81,8 @@ ReportTable mainTable(const BenchData& d) {
       withMetrics({textCell("method"), textCell("dataset"), textCell("source")});
   for (Cell c : std::vector<Cell>{{"time median (s)", "time_median_s"},
                                   {"time p90 (s)", "time_p90_s"},
+                                  {"CPU median (s)", "cpu_median_s"},
+                                  {"CPU p90 (s)", "cpu_p90_s"},
                                   {"peak memory (MB)", "peak_memory_mb"},
                                   {"failed runs", "failed_runs"}}) {
     header.push_back(c);
@@ -92,6 +96,8 @@ ReportTable mainTable(const BenchData& d) {
       for (const Cell& c : metricCells(summarize(p.errors))) row.push_back(c);
       row.push_back(numberCell(quantile(p.seconds, 0.5), 3));
       row.push_back(numberCell(quantile(p.seconds, 0.9), 3));
+      row.push_back(numberCell(quantile(p.cpu_seconds, 0.5), 3));
+      row.push_back(numberCell(quantile(p.cpu_seconds, 0.9), 3));
       row.push_back(numberCell(p.peak_mb, 0));
       row.push_back(textCell(std::to_string(p.failed_runs)));
       table.add(row);
@@ -108,6 +114,7 @@ ReportTable sweepTable(const BenchData& d, Sweep sweep, const std::vector<double
   std::vector<Cell> header =
       withMetrics({textCell("method"), textCell("dataset"), textCell("source"), value_header});
   header.push_back({"time median (s)", "time_median_s"});
+  header.push_back({"CPU median (s)", "cpu_median_s"});
   ReportTable table(header);
   for (const std::string& method : d.methods) {
     for (Scope scope : scopes(d)) {
@@ -119,6 +126,7 @@ ReportTable sweepTable(const BenchData& d, Sweep sweep, const std::vector<double
         row.push_back(textCell(fmt::format("{:g}", v)));
         for (const Cell& c : metricCells(summarize(p.errors))) row.push_back(c);
         row.push_back(numberCell(quantile(p.seconds, 0.5), 3));
+        row.push_back(numberCell(quantile(p.cpu_seconds, 0.5), 3));
         table.add(row);
       }
     }
@@ -209,7 +217,13 @@ std::string machine() {
   gmtime_r(&now, &utc);
   char date[32];
   std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", &utc);
-  return fmt::format("{} cores of {}; {}", std::thread::hardware_concurrency(), model, date);
+  // Wall times depend on what else ran: the load when the report is written covers the run's end.
+  std::ifstream loadavg("/proc/loadavg");
+  double load[3] = {NAN, NAN, NAN};
+  loadavg >> load[0] >> load[1] >> load[2];
+  return fmt::format(
+      "{} cores of {}; {}; load average at the end (1, 5, 15 min) {:.2f}, {:.2f}, {:.2f}",
+      std::thread::hardware_concurrency(), model, date, load[0], load[1], load[2]);
 }
 
 std::vector<LabelledTarget> mainTargets(const BenchData& d) {
@@ -247,7 +261,9 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
       fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d.command, machine());
   md += "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() +
         "Time per object: the method's wall time for one object (after the frame's images and the "
-        "models are loaded), median and 90th percentile over the targets the run reported. Peak "
+        "models are loaded), median and 90th percentile over the targets the run reported. CPU: "
+        "the CPU time of the process, all its threads, during the same call; on a shared machine "
+        "it is not inflated by other processes as wall time is. Peak "
         "memory: the maximum resident set size of the `stocs estimate` process that ran the "
         "method on the dataset (one process per run). Failed runs: runs that crashed or exited "
         "with an error; their targets count as missing.\n";

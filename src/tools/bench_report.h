@@ -37,6 +37,7 @@ struct BenchRun {
   std::string failure;  ///< why the run produced no (or unusable) results; empty if ok
   std::vector<TargetResult> targets;  ///< every target of the input, missing ones included
   std::vector<double> seconds;        ///< per target, NaN where the run did not report it
+  std::vector<double> cpu_seconds;    ///< the same for the process's CPU time
 
   /// "stocs on lmo-cat/real, threshold 0.3".
   std::string label(const std::vector<BenchInput>& inputs) const;

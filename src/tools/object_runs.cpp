@@ -1,6 +1,7 @@
 #include "object_runs.h"
 
 #include <fmt/format.h>
+#include <time.h>
 
 #include <fstream>
 #include <sstream>
@@ -10,12 +11,18 @@
 
 namespace stocs::tools {
 
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs) {
-  std::string text = "scene_id,im_id,obj_id,found,seconds,segment_points,hypotheses\n";
+  std::string text = "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses\n";
   for (const ObjectRun& r : runs) {
-    text +=
-        fmt::format("{},{},{},{},{:.6f},{},{}\n", r.target.scene_id, r.target.im_id,
-                    r.target.obj_id, r.found ? 1 : 0, r.seconds, r.segment_points, r.hypotheses);
+    text += fmt::format("{},{},{},{},{:.6f},{:.6f},{},{}\n", r.target.scene_id, r.target.im_id,
+                        r.target.obj_id, r.found ? 1 : 0, r.seconds, r.cpu_seconds,
+                        r.segment_points, r.hypotheses);
   }
   writeTextFile(file, text);
 }
@@ -30,12 +37,13 @@ std::vector<ObjectRun> readObjectRuns(const std::filesystem::path& file) {
     std::stringstream ss(line);
     ObjectRun r;
     int found = 0;
-    char c[6];
+    char c[7];
     if (!(ss >> r.target.scene_id >> c[0] >> r.target.im_id >> c[1] >> r.target.obj_id >> c[2] >>
-          found >> c[3] >> r.seconds >> c[4] >> r.segment_points >> c[5] >> r.hypotheses) ||
-        std::string(c, 6) != ",,,,,,") {
+          found >> c[3] >> r.seconds >> c[4] >> r.cpu_seconds >> c[5] >> r.segment_points >> c[6] >>
+          r.hypotheses) ||
+        std::string(c, 7) != ",,,,,,,") {
       throw InputError(
-          fmt::format("{}:{}: expected 7 comma-separated numbers", file.string(), line_no));
+          fmt::format("{}:{}: expected 8 comma-separated numbers", file.string(), line_no));
     }
     r.found = found != 0;
     runs.push_back(r);

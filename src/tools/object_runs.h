@@ -1,7 +1,7 @@
 #pragma once
 // What `stocs estimate --per-object FILE` records for every (image, object) it attempts, found or
 // not: the method's own time for the object, which BOP results (one time per image) cannot hold.
-// CSV: scene_id,im_id,obj_id,found,seconds,segment_points,hypotheses.
+// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses.
 
 #include <filesystem>
 #include <vector>
@@ -14,9 +14,15 @@ struct ObjectRun {
   Target target;
   bool found = false;
   double seconds = 0;  ///< wall time of the method's estimate() for this object
+  /// CPU time of the process (all its threads) during that estimate(): unlike wall time, not
+  /// inflated by other processes on a shared machine.
+  double cpu_seconds = 0;
   size_t segment_points = 0;
   long hypotheses = 0;
 };
+
+/// CPU time consumed so far by every thread of this process (CLOCK_PROCESS_CPUTIME_ID).
+double processCpuSeconds();
 
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs);
 

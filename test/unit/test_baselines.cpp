@@ -9,6 +9,7 @@
 // short; PPF's trained detector is shared by the tests through one method instance.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
 #include <opencv2/core.hpp>
@@ -35,8 +36,7 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     table.translation().z() = 0.7f;
     cv::Mat labels;
     const cv::Mat depth = test::renderDepth(
-        {{asymmetricMesh(), truth_}, {boxMesh({0.6f, 0.5f, 0.02f}), table}}, camera_,
-        &labels);
+        {{asymmetricMesh(), truth_}, {boxMesh({0.6f, 0.5f, 0.02f}), table}}, camera_, &labels);
     cloud_ = cloudFromDepth(depth, camera_, 1.0);
     probability_ = cv::Mat(labels.size(), CV_32FC1, cv::Scalar(0));
     probability_.setTo(0.9f, labels == 1);
@@ -73,10 +73,10 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     return p;
   }
 
-  static double addsOf(const MethodResult& r) {
+  static double addsOf(const MethodResult& r, const Eigen::Isometry3f& truth = truth_) {
     return addsError(model_.model.points,
                      {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},
-                     {truth_.linear().cast<double>(), truth_.translation().cast<double>()});
+                     {truth.linear().cast<double>(), truth.translation().cast<double>()});
   }
 
   static CameraIntrinsics camera_;
@@ -192,6 +192,40 @@ TEST_P(HardSegmentTest, SeesTheSameHardSegmentAsTheStocsAblation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Baselines, HardSegmentTest, ::testing::Values("fpcs", "kfpcs"),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param;
+                         });
+
+/// A segment of three identical objects side by side (a bin of one product): each is found only if
+/// bases stay within one object, so the 4PCS overlap must shrink with the segment's extent.
+class FourPcsInstancesTest : public BaselineTest {};
+
+TEST_P(FourPcsInstancesTest, FindsOneOfSeveralInstancesInTheSegment) {
+  std::vector<test::PlacedMesh> placed;
+  std::vector<Eigen::Isometry3f> truths;
+  for (float x : {-0.16f, 0.0f, 0.16f}) {
+    Eigen::Isometry3f pose = truth_;
+    pose.translation().x() += x;
+    truths.push_back(pose);
+    placed.push_back({asymmetricMesh(), pose});
+  }
+  cv::Mat labels;
+  const OrganizedCloud cloud =
+      cloudFromDepth(test::renderDepth(placed, camera_, &labels), camera_, 1.0);
+  cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+  probability.setTo(0.9f, labels > 0);
+  PipelineParams params = withSeed(1, 30);
+  params.stocs.icp.enabled = false;  // the search alone
+  const MethodResult r = method(GetParam()).estimate(input(params, &probability, &cloud));
+  ASSERT_TRUE(r.found);
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Eigen::Isometry3f& t : truths) {
+    nearest = std::min(nearest, addsOf(r, t));
+  }
+  EXPECT_LT(nearest, 0.10 * model_.model.diameter);
+}
+
+INSTANTIATE_TEST_SUITE_P(Baselines, FourPcsInstancesTest, ::testing::Values("fpcs", "kfpcs"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return info.param;
                          });

@@ -179,6 +179,7 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
   EXPECT_EQ(rows[0].at("obj_id"), "1");
   EXPECT_EQ(rows[0].at("found"), "1");
   EXPECT_GT(number(rows[0], "seconds"), 0);
+  EXPECT_GT(number(rows[0], "cpu_seconds"), 0);
   EXPECT_GT(number(rows[0], "segment_points"), 50);
 }
 
@@ -242,6 +243,7 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
     EXPECT_EQ(row.at("targets"), "1");
     EXPECT_EQ(row.at("failed_runs"), "0");
     EXPECT_GT(number(row, "time_median_s"), 0);
+    EXPECT_GT(number(row, "cpu_median_s"), 0);
     EXPECT_GT(number(row, "peak_memory_mb"), 10);
   }
   EXPECT_EQ(summary[0].at("method"), "stocs");
