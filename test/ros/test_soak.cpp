@@ -27,12 +27,14 @@
 #include <stocs_ros/ObjectPoseArray.h>
 #include <xmlrpcpp/XmlRpc.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <sstream>
 #include <thread>
 
 #include "ros_test_support.h"
@@ -88,6 +90,31 @@ long residentKb(int pid) {
     status.ignore(1 << 12, '\n');
   }
   return -1;
+}
+
+/// User + system CPU seconds of process `pid` so far (fields 14 and 15 of /proc/<pid>/stat), or -1.
+double cpuSeconds(int pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  // The command name (field 2) may hold spaces: count fields after its closing parenthesis.
+  const size_t close = line.rfind(')');
+  if (close == std::string::npos) return -1;
+  std::istringstream fields(line.substr(close + 2));
+  std::string field;
+  unsigned long long utime = 0, stime = 0;
+  for (int k = 3; k <= 15 && fields >> field; ++k) {
+    if (k == 14) utime = std::stoull(field);
+    if (k == 15) stime = std::stoull(field);
+  }
+  return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+/// The 1-minute load average, or -1.
+double loadAverage() {
+  double load = -1;
+  std::ifstream("/proc/loadavg") >> load;
+  return load;
 }
 
 double quantile(std::vector<double> values, double q) {
@@ -183,6 +210,7 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
   StatisticsListener statistics;
 
   std::vector<std::pair<double, long>> rss;  // (seconds since start, kB)
+  double cpu_at_warmup = -1, load_at_warmup = -1;
   uint64_t sent = 0;
   std::atomic<bool> stop{false};
   const ros::Time start = ros::Time::now();
@@ -199,8 +227,14 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
     probability_pub_.publish(probability_);
     ++sent;
     if (rss.empty() || t - rss.back().first >= 1.0) rss.emplace_back(t, residentKb(pid));
+    if (cpu_at_warmup < 0 && t >= g_params.warmup) {
+      cpu_at_warmup = cpuSeconds(pid);
+      load_at_warmup = loadAverage();
+    }
     rate.sleep();
   }
+  const double cpu_after_warmup = cpuSeconds(pid) - cpu_at_warmup;
+  const double load_at_end = loadAverage();
   stop = true;
   service.join();
 
@@ -271,12 +305,14 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
       "{} replaced, {} rejected, {} kept, {} cloud messages dropped, {} queued; {} service calls; "
       "RSS {:.0f} kB after warm-up, {:.0f} kB at the end ({:+.2f}%), max {:.0f} kB; latency of "
       "{} outputs after warm-up p50 {:.3f} s, p95 {:.3f} s; first third ({} outputs) p50 {:.3f} s, "
-      "p95 {:.3f} s; last third ({} outputs) p50 {:.3f} s, p95 {:.3f} s",
+      "p95 {:.3f} s; last third ({} outputs) p50 {:.3f} s, p95 {:.3f} s; node CPU after warm-up "
+      "{:.1f} s ({:.0f}% of one core); load average {:.1f} after warm-up, {:.1f} at the end",
       g_params.duration, g_params.rate, g_params.warmup, sent, c["frames estimated"],
       c["frames replaced"], c["frames rejected"], c["frames kept"], dropped_cloud,
       c["queued " + cloud_topic], service_calls_.load(), rss_start, rss_end,
       100 * (rss_end / rss_start - 1), rss_max, all.size(), quantile(all, 0.5), quantile(all, 0.95),
-      first.size(), p50_first, p95_first, last.size(), p50_last, p95_last);
+      first.size(), p50_first, p95_first, last.size(), p50_last, p95_last, cpu_after_warmup,
+      100 * cpu_after_warmup / (g_params.duration - g_params.warmup), load_at_warmup, load_at_end);
   std::cout << summary << std::endl;
   ROS_INFO("%s", summary.c_str());
 
