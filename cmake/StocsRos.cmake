@@ -2,7 +2,7 @@
 # thin wrappers around the core, the stocs_node and scene_publisher executables and the nodelet.
 # Included before the core targets because catkin_package() must precede every target.
 set(STOCS_ROS_CATKIN_DEPENDS
-  roscpp roslib std_msgs geometry_msgs sensor_msgs visualization_msgs std_srvs
+  roscpp roslib std_msgs geometry_msgs sensor_msgs visualization_msgs std_srvs diagnostic_msgs
   tf2 tf2_ros tf2_eigen cv_bridge nodelet)
 find_package(catkin REQUIRED COMPONENTS ${STOCS_ROS_CATKIN_DEPENDS} message_generation)
 find_package(yaml-cpp REQUIRED)

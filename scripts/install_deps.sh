@@ -8,7 +8,7 @@ PACKAGES=(
   ros-base-dev catkin python3-catkin-pkg python3-rostest python3-roslaunch python3-rosunit
   libpcl-ros-dev libpcl-conversions-dev libcv-bridge-dev
   libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev
-  ros-message-generation libvisualization-msgs-dev libstd-srvs-dev
+  ros-message-generation libvisualization-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libnodeletlib-dev libnodelet-dev libdynamic-reconfigure-config-init-mutex-dev
   python3-dynamic-reconfigure python3-geometry-msgs python3-sensor-msgs python3-tf2-msgs
   python3-visualization-msgs python3-std-msgs python3-numpy

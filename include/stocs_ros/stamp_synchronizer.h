@@ -39,6 +39,8 @@ enum class DropReason {
 constexpr size_t kDropReasonCount = 4;
 
 const char* toString(DropReason reason);
+/// Two words or fewer: "queue full", "unmatched", "late", "too old".
+const char* shortName(DropReason reason);
 
 struct DroppedMessage {
   size_t input;
@@ -90,6 +92,8 @@ class StampSynchronizer {
   }
 
   const std::array<uint64_t, kDropReasonCount>& dropCounts() const { return counts_; }
+  /// Messages of `input` waiting for a match.
+  size_t queued(size_t input) const { return queues_[input].size(); }
   size_t inputs() const { return queues_.size(); }
 
  private:

@@ -1,7 +1,9 @@
 #pragma once
 // The StoCS node's behaviour, shared by the node executable and the nodelet: subscribes the inputs
 // in the private namespace, synchronizes them by stamp, hands complete frames to the estimation
-// worker, publishes the results, and serves ~estimate and ~reload.
+// worker, publishes the results, and serves ~estimate and ~reload. Counts what became of every
+// input message and frame (node_statistics.h), publishes the counts on ~statistics every second and
+// logs them at shutdown.
 //
 // Threads: subscription callbacks (the caller's callback queue) only synchronize and queue; the
 // services run on a queue and thread of their own, so a service waiting for an estimation never
@@ -15,7 +17,6 @@
 #include <std_srvs/Trigger.h>
 #include <stocs_ros/Estimate.h>
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -26,6 +27,7 @@
 #include "stocs_ros/estimation_setup.h"
 #include "stocs_ros/frame_estimation.h"
 #include "stocs_ros/job_worker.h"
+#include "stocs_ros/node_statistics.h"
 #include "stocs_ros/output_publisher.h"
 #include "stocs_ros/stamp_synchronizer.h"
 #include "stocs_ros/symmetric_pose.h"
@@ -55,6 +57,7 @@ class StocsNode {
   struct QueuedJob {
     EstimationJob job;
     std::shared_ptr<const EstimationSetup> setup;
+    bool requested = false;  ///< by ~estimate, not a synchronized frame
   };
 
   std::shared_ptr<const EstimationSetup> setup() const;
@@ -65,6 +68,7 @@ class StocsNode {
   FrameMessages toFrame(std::vector<InputMessage>& messages, size_t objects) const;
   FrameResult process(const QueuedJob& queued);
   void onBackgroundError(std::exception_ptr error);
+  void publishStatistics();
   EstimationJob serviceJob(Estimate::Request& request, const EstimationSetup& setup);
   bool onEstimate(Estimate::Request& request, Estimate::Response& response);
   bool onReload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
@@ -79,8 +83,9 @@ class StocsNode {
   std::mutex sync_mutex_;  // guards sync_ and latest_frame_
   std::unique_ptr<StampSynchronizer<InputMessage>> sync_;
   std::optional<FrameMessages> latest_frame_;
-  std::atomic<uint64_t> frames_skipped_{0};   // replaced while the worker was busy
-  std::atomic<uint64_t> frames_rejected_{0};  // bad messages found during estimation
+  std::unique_ptr<NodeStatistics> statistics_;  // made with the inputs' topics
+  ros::Publisher statistics_pub_;
+  ros::WallTimer statistics_timer_;
 
   OutputPublisher output_;
   SymmetricPoseTracker tracker_;  // worker thread only

@@ -32,12 +32,19 @@ const char* toString(DropReason reason) {
   return "unknown";
 }
 
-std::string describeDropCounts(const std::array<uint64_t, kDropReasonCount>& counts) {
+const char* shortName(DropReason reason) {
   static constexpr const char* kShort[kDropReasonCount] = {"queue full", "unmatched", "late",
                                                            "too old"};
+  return kShort[static_cast<size_t>(reason)];
+}
+
+std::string describeDropCounts(const std::array<uint64_t, kDropReasonCount>& counts) {
   std::string out;
   for (size_t r = 0; r < kDropReasonCount; ++r) {
-    if (counts[r] > 0) out += fmt::format("{}{} {}", out.empty() ? "" : ", ", counts[r], kShort[r]);
+    if (counts[r] > 0) {
+      out += fmt::format("{}{} {}", out.empty() ? "" : ", ", counts[r],
+                         shortName(static_cast<DropReason>(r)));
+    }
   }
   return out.empty() ? "none" : out;
 }

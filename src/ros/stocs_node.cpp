@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <diagnostic_msgs/DiagnosticArray.h>
+
 #include <boost/make_shared.hpp>
 
 #include "stocs/error.h"
@@ -12,7 +14,8 @@ using stocs::InputError;
 
 namespace {
 
-constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of warning
+constexpr double kWarnPeriod = 5.0;        // seconds between repeats of one kind of warning
+constexpr double kStatisticsPeriod = 1.0;  // seconds between ~statistics messages
 
 std::string requireConfigParameter(const ros::NodeHandle& pnh) {
   std::string file;
@@ -73,17 +76,23 @@ StocsNode::StocsNode(ros::NodeHandle pnh)
   estimate_service_ = service_nh.advertiseService("estimate", &StocsNode::onEstimate, this);
   reload_service_ = service_nh.advertiseService("reload", &StocsNode::onReload, this);
   service_spinner_.start();
+  statistics_timer_ =
+      pnh_.createWallTimer(ros::WallDuration(kStatisticsPeriod),
+                           [this](const ros::WallTimerEvent&) { publishStatistics(); });
   ROS_INFO("stocs: %zu objects (%s) from %s; waiting for %zu synchronized inputs",
            config.objects.size(), config.objectNames().c_str(), config_file_.c_str(),
            inputs_.size());
 }
 
 StocsNode::~StocsNode() {
-  // Stop every source of new jobs before the worker goes.
+  // Stop every source of new jobs, then the worker, so that the final counts are complete.
+  statistics_timer_.stop();
   for (ros::Subscriber& s : subscribers_) s.shutdown();
   service_spinner_.stop();
   estimate_service_.shutdown();
   reload_service_.shutdown();
+  worker_.reset();
+  ROS_INFO("stocs: at shutdown: %s", statistics_->summary().c_str());
 }
 
 std::shared_ptr<const EstimationSetup> StocsNode::setup() const {
@@ -118,6 +127,10 @@ void StocsNode::subscribeInputs() {
   // Before the first subscription: with a multi-threaded nodelet manager, callbacks may start at
   // once.
   sync_ = std::make_unique<StampSynchronizer<InputMessage>>(inputs_.size(), config.input.sync);
+  std::vector<std::string> topics;
+  for (const Input& in : inputs_) topics.push_back(in.topic);
+  statistics_ = std::make_unique<NodeStatistics>(std::move(topics));
+  statistics_pub_ = pnh_.advertise<diagnostic_msgs::DiagnosticArray>("statistics", 1, true);
 
   const int queue = config.input.sync.queue_size;
   for (size_t i = 0; i < inputs_.size(); ++i) {
@@ -144,12 +157,14 @@ void StocsNode::subscribe(size_t input, int queue_size) {
 }
 
 void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage message) {
+  statistics_->received(input);
   const std::shared_ptr<const EstimationSetup> current = setup();
   std::vector<DroppedMessage> dropped;
   std::optional<EstimationJob> job;
   {
     std::lock_guard<std::mutex> lock(sync_mutex_);
     auto match = sync_->add(input, stamp, std::move(message), dropped);
+    statistics_->dropped(dropped);
     if (!dropped.empty()) {
       const DroppedMessage& d = dropped.back();
       ROS_WARN_THROTTLE(kWarnPeriod,
@@ -158,16 +173,20 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
                         describeDropCounts(sync_->dropCounts()).c_str());
     }
     if (!match) return;
+    statistics_->matched();
     latest_frame_ = toFrame(match->messages, current->config.objects.size());
-    if (!current->config.output.estimate_on_frames) return;
+    if (!current->config.output.estimate_on_frames) {
+      statistics_->kept();
+      return;
+    }
     job = EstimationJob{*latest_frame_, {}, std::nullopt};
   }
   for (size_t i = 0; i < current->config.objects.size(); ++i) job->objects.push_back(i);
   if (worker_->offer({std::move(*job), current})) {
-    ++frames_skipped_;
+    statistics_->replaced();
     ROS_WARN_THROTTLE(kWarnPeriod,
-                      "stocs: estimation is slower than the input; %lu frames skipped so far",
-                      static_cast<unsigned long>(frames_skipped_.load()));
+                      "stocs: estimation is slower than the input; a newer frame replaced one "
+                      "waiting (counts on ~statistics)");
   }
 }
 
@@ -209,17 +228,29 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
     }
   }
   output_.publish(result, *queued.setup);
+  if (!queued.requested) statistics_->estimated();
   return result;
 }
 
 void StocsNode::onBackgroundError(std::exception_ptr error) {
-  ++frames_rejected_;
+  statistics_->rejected(rejectionKind(error));
   try {
     std::rethrow_exception(error);
   } catch (const std::exception& e) {
-    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: frame rejected: %s (%lu frames rejected so far)",
-                       e.what(), static_cast<unsigned long>(frames_rejected_.load()));
+    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: frame rejected: %s (counts on ~statistics)", e.what());
   }
+}
+
+void StocsNode::publishStatistics() {
+  std::vector<size_t> queued(inputs_.size());
+  {
+    std::lock_guard<std::mutex> lock(sync_mutex_);
+    for (size_t i = 0; i < queued.size(); ++i) queued[i] = sync_->queued(i);
+  }
+  diagnostic_msgs::DiagnosticArray msg;
+  msg.header.stamp = ros::Time::now();
+  msg.status.push_back(statistics_->status(pnh_.getNamespace(), queued));
+  statistics_pub_.publish(msg);
 }
 
 EstimationJob StocsNode::serviceJob(Estimate::Request& request, const EstimationSetup& setup) {
@@ -275,7 +306,8 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
 bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
   const std::shared_ptr<const EstimationSetup> current = setup();
   try {
-    const FrameResult result = worker_->request({serviceJob(request, *current), current}).get();
+    const FrameResult result =
+        worker_->request({serviceJob(request, *current), current, true}).get();
     response.result = toObjectPoseArray(result, *current);
     response.success = true;
     response.message = describeOutcome(result, current->config);
@@ -284,6 +316,7 @@ bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& respo
     response.message = e.what();
     ROS_WARN("stocs: ~estimate failed: %s", e.what());
   }
+  statistics_->serviceCall(response.success);
   return true;  // the outcome is in the response, so the caller sees the message
 }
 

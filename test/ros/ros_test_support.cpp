@@ -1,12 +1,45 @@
 #include "ros_test_support.h"
 
+#include <cv_bridge/cv_bridge.h>
 #include <tf2_eigen/tf2_eigen.h>
 
 #include "stocs/bop_dataset.h"
 #include "stocs/mesh.h"
 #include "stocs/pose_metrics.h"
+#include "stocs_ros/cloud_conversion.h"
+#include "stocs_ros/stamp_synchronizer.h"
 
 namespace stocs_ros::test {
+
+InputFrame loadInputFrame(const std::filesystem::path& dataset) {
+  const stocs::BopDataset ds(dataset);
+  const cv::Mat depth = ds.loadDepth(0, 0);
+  const stocs::BopFrameCamera camera = ds.sceneCameras(0).at(0);
+  InputFrame frame;
+  frame.cloud = cloudToMsg(stocs::cloudFromDepth(depth, camera.intrinsics(depth.cols, depth.rows),
+                                                 camera.depth_scale / 1000),
+                           cv::Mat());
+  frame.cloud.header.frame_id = "camera";
+  frame.probability =
+      *cv_bridge::CvImage(frame.cloud.header, "32FC1", ds.loadProbability(0, 0, 1)).toImageMsg();
+  return frame;
+}
+
+std::map<std::string, uint64_t> statisticsCounts(const diagnostic_msgs::DiagnosticArray& msg) {
+  std::map<std::string, uint64_t> counts;
+  for (const diagnostic_msgs::DiagnosticStatus& s : msg.status) {
+    for (const diagnostic_msgs::KeyValue& kv : s.values) counts[kv.key] = std::stoull(kv.value);
+  }
+  return counts;
+}
+
+uint64_t droppedMessages(std::map<std::string, uint64_t>& counts, const std::string& topic) {
+  uint64_t dropped = 0;
+  for (size_t r = 0; r < kDropReasonCount; ++r) {
+    dropped += counts["dropped " + topic + ": " + shortName(static_cast<DropReason>(r))];
+  }
+  return dropped;
+}
 
 Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scene, int image,
                                   int obj_id) {

@@ -2,14 +2,18 @@
 // Helpers of the rostest test nodes: waiting for messages, ground truth from the played dataset,
 // and pose errors.
 
+#include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/Pose.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include <Eigen/Geometry>
 #include <condition_variable>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -41,6 +45,19 @@ std::optional<Message> waitForMessage(const std::string& topic, double timeout,
   sub.shutdown();
   return out;
 }
+
+/// Image 0 of scene 0 of a generated BOP dataset as the node's inputs: an organized cloud
+/// (frame "camera") and the 32FC1 probability image of object 1, stamps unset.
+struct InputFrame {
+  sensor_msgs::PointCloud2 cloud;
+  sensor_msgs::Image probability;
+};
+InputFrame loadInputFrame(const std::filesystem::path& dataset);
+
+/// The node's ~statistics counters by key (see node_statistics.h).
+std::map<std::string, uint64_t> statisticsCounts(const diagnostic_msgs::DiagnosticArray& msg);
+/// Messages of `topic` dropped by the synchronizer, all reasons together.
+uint64_t droppedMessages(std::map<std::string, uint64_t>& counts, const std::string& topic);
 
 /// Model-to-camera pose (metres) of the first ground-truth instance of `obj_id` in a BOP frame.
 Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scene, int image,

@@ -61,6 +61,20 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
   expectNodeFails(writeConfig(dir, "no_objects.yaml", "objects: []\n"),
                   "'objects' must be a non-empty list");
 
+  std::ofstream(dir / "empty.ply").flush();
+  expectNodeFails(
+      writeConfig(dir, "empty_model.yaml", "objects:\n  - name: box\n    model: empty.ply\n"),
+      "model " + (dir / "empty.ply").string() + ": file is empty");
+  std::ofstream(dir / "garbage.ply") << "this is not a ply file\n";
+  expectNodeFails(
+      writeConfig(dir, "garbage_model.yaml", "objects:\n  - name: box\n    model: garbage.ply\n"),
+      "model " + (dir / "garbage.ply").string() + ": not a readable ply file");
+  // box.ply is in millimetres (60 mm long); declared as metres it would be 60 m long.
+  expectNodeFails(
+      writeConfig(dir, "unit_mistake.yaml", std::string(kObject) + "    unit_scale: 1\n"),
+      "is implausible for an object; is the unit scale right? (BOP models are in mm: "
+      "use 0.001)");
+
   std::string output;
   EXPECT_EQ(run(STOCS_NODE_PATH, "", output), 1) << output;
   EXPECT_NE(output.find("config (the configuration file) is not set"), std::string::npos) << output;

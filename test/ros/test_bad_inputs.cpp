@@ -1,7 +1,8 @@
 // The node fed bad messages directly (remapped to /bad/cloud and /bad/probability/box): wrong
 // encoding, size mismatch, all-NaN, empty and unorganized clouds, stamps that never match. None
-// may produce an output or stop the node; the service names the latest frame's problem; a good
-// frame afterwards is estimated near the ground truth.
+// may produce an output or stop the node; each is counted on ~statistics under the input at fault;
+// the service names the latest frame's problem; a good frame afterwards is estimated near the
+// ground truth; concurrent service calls are all answered.
 #include <cv_bridge/cv_bridge.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -14,15 +15,15 @@
 
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <opencv2/core.hpp>
 #include <set>
 
 #include "ros_test_support.h"
-#include "stocs/bop_dataset.h"
-#include "stocs_ros/cloud_conversion.h"
 
 namespace stocs_ros::test {
 namespace {
@@ -37,16 +38,9 @@ class BadInputs : public ::testing::Test {
     ros::NodeHandle nh;
     cloud_pub_ = nh.advertise<sensor_msgs::PointCloud2>("/bad/cloud", 5);
     probability_pub_ = nh.advertise<sensor_msgs::Image>("/bad/probability/box", 5);
-    const stocs::BopDataset dataset(g_dataset);
-    const cv::Mat depth = dataset.loadDepth(0, 0);
-    const stocs::BopFrameCamera camera = dataset.sceneCameras(0).at(0);
-    good_cloud_ = cloudToMsg(stocs::cloudFromDepth(depth, camera.intrinsics(depth.cols, depth.rows),
-                                                   camera.depth_scale / 1000),
-                             cv::Mat());
-    good_cloud_.header.frame_id = "camera";
-    good_probability_ =
-        *cv_bridge::CvImage(good_cloud_.header, "32FC1", dataset.loadProbability(0, 0, 1))
-             .toImageMsg();
+    const InputFrame frame = loadInputFrame(g_dataset);
+    good_cloud_ = frame.cloud;
+    good_probability_ = frame.probability;
     const boost::function<void(const ObjectPoseArray::ConstPtr&)> on_objects =
         [](const ObjectPoseArray::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex_);
@@ -111,6 +105,36 @@ std::mutex BadInputs::mutex_;
 std::set<ros::Time> BadInputs::output_stamps_;
 ObjectPoseArray BadInputs::last_output_;
 
+/// The latest ~statistics counters by key (the topic is latched), once `ready` holds for them.
+std::map<std::string, uint64_t> statistics(
+    const std::function<bool(std::map<std::string, uint64_t>&)>& ready) {
+  std::map<std::string, uint64_t> counts;
+  waitForMessage<diagnostic_msgs::DiagnosticArray>("/stocs/statistics", 10,
+                                                   [&](const diagnostic_msgs::DiagnosticArray& m) {
+                                                     counts = statisticsCounts(m);
+                                                     return ready(counts);
+                                                   });
+  return counts;
+}
+
+/// The five bad frames were matched and rejected, counted by the input their error names; the
+/// frame whose stamps never matched is dropped or still waiting, never lost.
+void expectCountedByInputAtFault() {
+  std::map<std::string, uint64_t> c = statistics([](auto& c) { return c["frames rejected"] >= 5; });
+  EXPECT_EQ(c["frames rejected"], 5u);
+  EXPECT_EQ(c["frames rejected: probability image of 'box'"], 1u);  // rgb8
+  EXPECT_EQ(c["frames rejected: object 'box'"], 1u);                // 10x10 probability image
+  EXPECT_EQ(c["frames rejected: cloud"], 3u);                       // NaN, empty, unorganized
+  EXPECT_EQ(c["frames estimated"], 0u);
+  EXPECT_EQ(c["frames matched"], 5u);
+  for (const std::string topic : {"/bad/cloud", "/bad/probability/box"}) {
+    EXPECT_EQ(c["received " + topic], 6u) << topic;
+    EXPECT_EQ(c["received " + topic],
+              c["frames matched"] + droppedMessages(c, topic) + c["queued " + topic])
+        << topic;
+  }
+}
+
 TEST_F(BadInputs, ServiceBeforeAnyFrameSaysThereIsNone) {
   ASSERT_GT(cloud_pub_.getNumSubscribers(), 0u) << "the node never subscribed /bad/cloud";
   const Estimate::Response r = estimate();
@@ -156,7 +180,8 @@ TEST_F(BadInputs, BadFramesGiveNoOutputAndTheNodeKeepsAnswering) {
   // The latest synchronized frame is the unorganized cloud: the service names its problem.
   const Estimate::Response r = estimate();
   EXPECT_FALSE(r.success);
-  EXPECT_NE(r.message.find("cloud is not organized"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("cloud: cloud is not organized"), std::string::npos) << r.message;
+  expectCountedByInputAtFault();
   std::lock_guard<std::mutex> lock(mutex_);
   for (const ros::Time& stamp : bad_stamps_) {
     EXPECT_EQ(output_stamps_.count(stamp), 0u) << "an output for the bad frame at " << stamp;
@@ -222,6 +247,36 @@ TEST_F(BadInputs, AGoodFrameAfterwardsIsEstimated) {
   const Estimate::Response r = estimate();
   EXPECT_TRUE(r.success) << r.message;
   EXPECT_EQ(r.result.header.stamp, stamp);
+}
+
+TEST_F(BadInputs, ConcurrentServiceCallsAreAllAnswered) {
+  // Four estimates (one naming an unknown object) and a reload at once: each gets its own answer.
+  std::ifstream file(g_config);
+  const std::string config(std::istreambuf_iterator<char>(file), {});
+  const auto call = [](std::vector<std::string> objects) {
+    Estimate srv;
+    srv.request.objects = std::move(objects);
+    EXPECT_TRUE(ros::service::call(kService, srv));
+    return srv.response;
+  };
+  std::vector<std::future<Estimate::Response>> estimates;
+  for (int k = 0; k < 3; ++k)
+    estimates.push_back(std::async(std::launch::async, call, std::vector<std::string>{"box"}));
+  estimates.push_back(std::async(std::launch::async, call, std::vector<std::string>{"ghost"}));
+  const std_srvs::Trigger::Response reloaded = reloadWith(config);
+  EXPECT_TRUE(reloaded.success) << reloaded.message;
+  std::vector<Estimate::Response> r;
+  for (auto& f : estimates) r.push_back(f.get());
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_TRUE(r[k].success) << r[k].message;
+    EXPECT_EQ(r[k].message, "1 of 1 objects found");
+    EXPECT_EQ(r[k].result.header.stamp, r[0].result.header.stamp);
+  }
+  EXPECT_FALSE(r[3].success);
+  EXPECT_EQ(r[3].message, "unknown object 'ghost'; configured objects: box");
+  const std::map<std::string, uint64_t> c =
+      statistics([](auto& c) { return c["service calls"] >= 4; });
+  EXPECT_GE(c.at("service calls failed"), 1u);
 }
 
 }  // namespace
