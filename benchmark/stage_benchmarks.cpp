@@ -72,7 +72,8 @@ void verification(benchmark::State& state, const Frame& (*get)()) {
 
 void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
   const Frame& f = get();
-  const PipelineParams p = benchmarkParams();
+  PipelineParams p = benchmarkParams();
+  p.stocs.threads = static_cast<int>(state.range(0));  // 0: all cores
   const StocsEstimator estimator(f.model, p.stocs);
   for (auto _ : state) benchmark::DoNotOptimize(estimator.estimate(f.segment));
 }
@@ -85,8 +86,19 @@ BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, dove, dove)->Unit(benchmark::kMicrosecond);
-BENCHMARK_CAPTURE(fullEstimate, cat, cat)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, dove, dove)->Unit(benchmark::kMillisecond);
+// One thread (CPU time per core), then all cores: process CPU time over all threads and wall time.
+BENCHMARK_CAPTURE(fullEstimate, cat, cat)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(fullEstimate, dove, dove)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(fullEstimate, cat, cat)
+    ->Arg(0)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(fullEstimate, dove, dove)
+    ->Arg(0)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace stocs::bench

@@ -16,6 +16,7 @@
 #include "stocs/icp_refiner.h"
 #include "stocs/lcp_scorer.h"
 #include "stocs/model_cache.h"
+#include "stocs/pose_proximity.h"
 #include "stocs/soft_segment.h"
 
 namespace stocs {
@@ -24,6 +25,9 @@ struct StocsParams {
   BaseSamplerParams base;
   CongruentSetParams congruent;
   float max_fit_rms = 0.008f;  ///< metres: congruent sets whose rigid fit is worse are dropped
+  /// Metres: a hypothesis that moves no model point farther than this from a hypothesis already
+  /// scored for the same base is a near-duplicate and is not scored (0 scores every one).
+  float duplicate_distance = 0.0025f;
   LcpParams lcp;
   IcpParams icp;
   FreeSpaceParams free_space;
@@ -71,6 +75,7 @@ struct PoseEstimate {
   int bases_with_sets = 0;  ///< of those, bases with at least one congruent set
   long congruent_sets = 0;  ///< sets verified (after the per-base cap)
   long hypotheses = 0;      ///< rigid fits that passed the RMS check and were scored
+  long duplicates = 0;      ///< rigid fits skipped as near-duplicates of a scored one
   StageSeconds stages;
   double seconds = 0;  ///< wall time of estimate()
 };
@@ -89,9 +94,18 @@ class StocsEstimator {
   const StocsParams& params() const { return params_; }
 
  private:
+  /// A hypothesis with the image of the model's centre under it.
+  struct PlacedPose {
+    Eigen::Isometry3f pose;
+    Eigen::Vector3f centre;
+  };
+  /// True when `pose` moves no model point farther than duplicate_distance from one of `scored`.
+  bool isNearDuplicate(const PlacedPose& pose, const std::vector<PlacedPose>& scored) const;
+
   const PreparedModel& model_;
   StocsParams params_;
   CongruentSetMatcher matcher_;
+  PoseProximity proximity_;
 };
 
 }  // namespace stocs

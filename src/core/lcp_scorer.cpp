@@ -8,6 +8,16 @@
 #include "stocs/error.h"
 
 namespace stocs {
+namespace {
+
+struct Span {
+  const uint32_t* data;
+  size_t count;
+  size_t size() const { return count; }
+  uint32_t operator[](size_t k) const { return data[k]; }
+};
+
+}  // namespace
 
 void LcpParams::validate() const {
   if (!(distance > 0.0f && distance <= 0.1f)) {
@@ -55,36 +65,39 @@ float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, 
                        float must_reach) const {
   const Eigen::Matrix3f r = pose.linear();
   const Eigen::Vector3f t = pose.translation();
-  const size_t n = model.size();
   // A model point can only match when its normal n satisfies n.v <= sin(delta_n) for the viewing
   // ray v: scene normals face the camera (N.v <= 0) and must be within delta_n of n. Counting the
-  // points that pass this cheap test first gives an exact upper bound for the early stop.
-  thread_local std::vector<char> can_match;
-  can_match.resize(n);
-  size_t remaining = 0;
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Vector3f p = r * model.points[i] + t;
-    can_match[i] = (r * model.normals[i]).dot(p) <= sin_normal_ * p.norm();
-    remaining += can_match[i];
+  // points that pass this cheap test first gives an exact upper bound for the early stop. The test
+  // runs in the model frame, where the camera-frame point R m + t is m + R^T t up to the rotation:
+  // (R n).(R m + t) = n.(m + R^T t) and |R m + t| = |m + R^T t|, so no point is transformed.
+  const Eigen::Vector3f camera_offset = r.transpose() * t;
+  const float sin2 = sin_normal_ * sin_normal_;
+  thread_local std::vector<uint32_t> facing_storage;
+  facing_storage.resize(model.size());
+  size_t facing_count = 0;
+  for (size_t i = 0; i < model.size(); ++i) {  // branch-free: about half the points pass
+    const Eigen::Vector3f q = model.points[i] + camera_offset;
+    const float nq = model.normals[i].dot(q);
+    facing_storage[facing_count] = static_cast<uint32_t>(i);
+    facing_count += nq <= 0 || nq * nq <= sin2 * q.squaredNorm();
   }
+  const Span facing{facing_storage.data(), facing_count};
   const NeighbourhoodGrid& grid = gridOf(region);
-  const size_t facing = remaining;
-  const size_t coarse_check = static_cast<size_t>(std::ceil(params_.coarse_fraction * facing));
+  // Coarse-to-fine: checks after coarse_fraction of the facing points and again after every
+  // doubling of the points seen (1/8, 1/4, 1/2 by default).
+  size_t coarse_check = static_cast<size_t>(std::ceil(params_.coarse_fraction * facing.size()));
   float total = 0;
-  size_t visited = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (!can_match[i]) continue;
+  for (size_t visited = 0; visited < facing.size(); ++visited) {
     // Check the bound every 16 candidates: cheap, and exact because it never discards a pose that
     // could reach must_reach.
+    const size_t remaining = facing.size() - visited;
     if ((visited & 15) == 0 && total + remaining * max_probability_ < must_reach) return -1.0f;
-    if (visited == coarse_check && coarse_check > 0 &&
-        total * facing < params_.coarse_ratio * must_reach * visited) {
-      return -1.0f;
+    if (visited == coarse_check && coarse_check > 0) {
+      if (total * facing.size() < params_.coarse_ratio * must_reach * visited) return -1.0f;
+      coarse_check *= 2;
     }
-    ++visited;
-    --remaining;
-    const Eigen::Vector3f p = r * model.points[i] + t;
-    const int s = grid.closest(p);
+    const uint32_t i = facing[visited];
+    const int s = grid.closest(r * model.points[i] + t);
     if (s < 0) continue;
     if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
       total += segment_.probability[s];

@@ -26,7 +26,7 @@ double secondsSince(Clock::time_point t) {
 struct BaseOutcome {
   bool tried = false, sampled = false;
   int sets = 0;
-  long hypotheses = 0;
+  long hypotheses = 0, duplicates = 0;
   float score = -std::numeric_limits<float>::infinity();
   int region = -1;  // instance region of the base, -1 without regions
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
@@ -121,6 +121,10 @@ void StocsParams::validate() const {
   if (!(max_fit_rms > 0.0f && max_fit_rms <= 0.1f)) {
     throw InputError(fmt::format("rigid fit RMS limit {} m is outside (0, 0.1]", max_fit_rms));
   }
+  if (!(duplicate_distance >= 0.0f && duplicate_distance <= 0.1f)) {
+    throw InputError(
+        fmt::format("duplicate hypothesis distance {} m is outside [0, 0.1]", duplicate_distance));
+  }
   if (bases < 1 || bases > 1000000)
     throw InputError(fmt::format("bases {} is outside [1, 1000000]", bases));
   if (!(time_budget >= 0) || time_budget > 3600) {
@@ -139,8 +143,18 @@ void StocsParams::validate() const {
 }
 
 StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& params)
-    : model_(model), params_(params), matcher_(model, params.congruent) {
+    : model_(model), params_(params), matcher_(model, params.congruent), proximity_(model.model) {
   params_.validate();
+}
+
+bool StocsEstimator::isNearDuplicate(const PlacedPose& pose,
+                                     const std::vector<PlacedPose>& scored) const {
+  const float d = params_.duplicate_distance;
+  return std::any_of(scored.begin(), scored.end(), [&](const PlacedPose& s) {
+    // The centre's move is part of the bound and rules out most pairs with three subtractions.
+    return (s.centre - pose.centre).squaredNorm() < d * d &&
+           proximity_.within(pose.pose, s.pose, d);
+  });
 }
 
 PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
@@ -174,6 +188,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<float> thread_top;
     std::vector<std::pair<int, float>> scratch;
     std::vector<CongruentSet> sets;
+    std::vector<PlacedPose> scored;  // hypotheses of the current base
 #pragma omp for schedule(dynamic, 1)
     for (int b = 0; b < params_.bases; ++b) {
       if (budgeted && Clock::now() > deadline) continue;
@@ -199,11 +214,18 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       out.sets = static_cast<int>(sets.size());
 
       t = Clock::now();
+      scored.clear();
       for (const CongruentSet& set : sets) {
         const std::array<Eigen::Vector3f, 4> mp = {model.points[set[0]], model.points[set[1]],
                                                    model.points[set[2]], model.points[set[3]]};
         const std::optional<Eigen::Isometry3f> pose = fitRigid(mp, bp, params_.max_fit_rms);
         if (!pose) continue;
+        const PlacedPose placed{*pose, *pose * proximity_.centre()};
+        if (isNearDuplicate(placed, scored)) {
+          ++out.duplicates;
+          continue;
+        }
+        scored.push_back(placed);
         ++out.hypotheses;
         const float kth =
             thread_top.size() < keep ? -std::numeric_limits<float>::infinity() : thread_top.front();
@@ -229,6 +251,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.bases_with_sets += out.sets > 0;
     result.congruent_sets += out.sets;
     result.hypotheses += out.hypotheses;
+    result.duplicates += out.duplicates;
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;

@@ -288,6 +288,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   congruent.get("min_line_angle_deg", p.stocs.congruent.min_line_angle_deg);
   congruent.rejectUnknownKeys();
   stocs.get("max_fit_rms", p.stocs.max_fit_rms);
+  stocs.get("duplicate_distance", p.stocs.duplicate_distance);
   MapReader lcp = stocs.map("lcp");
   lcp.get("distance", p.stocs.lcp.distance);
   lcp.get("normal_angle_deg", p.stocs.lcp.normal_angle_deg);
