@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <iterator>
@@ -20,14 +21,14 @@ constexpr size_t kMaxHeaderLines = 1000;
 constexpr uint64_t kMaxElements = 100'000'000;  // far above any graspable object's model
 
 /// The header lines of a model file (up to and including the line starting with `last`) and the
-/// number of bytes after them.
+/// number of bytes after them. With `magic`, the first line must be that word.
 struct Header {
   std::vector<std::vector<std::string>> lines;  // each line split at white space
   std::vector<std::string> raw_lines;
   uint64_t body_bytes = 0;
 };
 
-Header readHeader(const std::string& path, const std::string& last) {
+Header readHeader(const std::string& path, const std::string& last, const std::string& magic = "") {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("model {}: cannot open for reading", path));
   Header h;
@@ -43,6 +44,13 @@ Header readHeader(const std::string& path, const std::string& last) {
     std::istringstream words(line);
     h.lines.emplace_back(std::istream_iterator<std::string>(words),
                          std::istream_iterator<std::string>());
+    if (!magic.empty() && h.lines.size() == 1 && h.lines[0] != std::vector<std::string>{magic}) {
+      std::string format = magic;  // "ply" -> "PLY"
+      std::transform(format.begin(), format.end(), format.begin(),
+                     [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+      throw InputError(
+          fmt::format("model {}: not a {} file (its first line is not '{}')", path, format, magic));
+    }
     if (!h.lines.back().empty() && h.lines.back()[0] == last) {
       const std::streamoff header_end = in.tellg();
       in.seekg(0, std::ios::end);
@@ -84,11 +92,10 @@ struct PlyElement {
 }  // namespace
 
 void checkPlyHeader(const std::string& path) {
-  const Header h = readHeader(path, "end_header");
+  const Header h = readHeader(path, "end_header", "ply");
   const auto fail = [&](const std::string& why) {
     return InputError(fmt::format("model {}: {}", path, why));
   };
-  if (h.lines[0] != std::vector<std::string>{"ply"}) throw fail("first line is not 'ply'");
   std::string format;
   std::vector<PlyElement> elements;
   for (size_t i = 1; i + 1 < h.lines.size(); ++i) {
@@ -120,7 +127,10 @@ void checkPlyHeader(const std::string& path) {
     vertex_bytes += plyTypeSize(p[0]);
   }
   uint64_t face_min_bytes = 0;
-  if (elements.size() == 2) {
+  // PCL's own writer declares an empty 'element face 0' without properties for point clouds.
+  const bool empty_faces =
+      elements.size() == 2 && elements[1].count == 0 && elements[1].properties.empty();
+  if (elements.size() == 2 && !empty_faces) {
     const auto& p = elements[1].properties;
     if (p.size() != 1 || p[0].size() != 4 || p[0][0] != "list" ||
         (p[0][1] != "uchar" && p[0][1] != "uint8") ||

@@ -68,7 +68,7 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
   std::ofstream(dir / "garbage.ply") << "this is not a ply file\n";
   expectNodeFails(
       writeConfig(dir, "garbage_model.yaml", "objects:\n  - name: box\n    model: garbage.ply\n"),
-      "model " + (dir / "garbage.ply").string() + ": not a readable ply file");
+      "model " + (dir / "garbage.ply").string() + ": not a PLY file");
   // box.ply is in millimetres (60 mm long); declared as metres it would be 60 m long.
   expectNodeFails(
       writeConfig(dir, "unit_mistake.yaml", std::string(kObject) + "    unit_scale: 1\n"),

@@ -30,7 +30,7 @@ TEST(CliBadInput, BadModelFilesExitTwoNamingTheFile) {
       << out;
   std::ofstream(dir / "garbage.ply") << "this is not a ply file\n";
   EXPECT_EQ(stocs("prepare --no-cache " + (dir / "garbage.ply").string(), out), 2);
-  EXPECT_NE(out.find("model " + (dir / "garbage.ply").string() + ": not a readable ply file"),
+  EXPECT_NE(out.find("model " + (dir / "garbage.ply").string() + ": not a PLY file"),
             std::string::npos)
       << out;
 }

@@ -43,6 +43,12 @@ TEST(MeshIo, ReadsPointsOnlyPlyAndPcd) {
             "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH "
             "3\nHEIGHT 1\n"
             "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA ascii\n0 0 0\n0.1 0 0\n0 0.05 0\n");
+  // PCL's PLYWriter declares an empty face element without properties for point clouds.
+  writeText(dir / "pcl_points.ply",
+            "ply\nformat ascii 1.0\ncomment PCL generated\nelement vertex 2\nproperty float "
+            "x\nproperty float y\nproperty float z\nelement face 0\nend_header\n0 0 0\n0.1 0 "
+            "0\n");
+  EXPECT_EQ(loadMesh((dir / "pcl_points.ply").string(), 1.0f).vertices.size(), 2u);
   const MeshData pcd = loadMesh((dir / "points.pcd").string(), 1.0f);
   EXPECT_EQ(pcd.vertices.size(), 3u);
   EXPECT_FALSE(pcd.isMesh());
