@@ -26,7 +26,10 @@ struct Header {
   std::vector<std::vector<std::string>> lines;  // each line split at white space
   std::vector<std::string> raw_lines;
   uint64_t body_bytes = 0;
+  std::string body_start;  // the body's first bytes, up to kBodyStart
 };
+
+constexpr size_t kBodyStart = 4096;
 
 Header readHeader(const std::string& path, const std::string& last, const std::string& magic = "") {
   std::ifstream in(path, std::ios::binary);
@@ -53,6 +56,10 @@ Header readHeader(const std::string& path, const std::string& last, const std::s
     }
     if (!h.lines.back().empty() && h.lines.back()[0] == last) {
       const std::streamoff header_end = in.tellg();
+      h.body_start.resize(kBodyStart);
+      in.read(h.body_start.data(), kBodyStart);
+      h.body_start.resize(static_cast<size_t>(in.gcount()));
+      in.clear();
       in.seekg(0, std::ios::end);
       h.body_bytes = header_end < 0 ? 0 : static_cast<uint64_t>(in.tellg() - header_end);
       return h;
@@ -221,6 +228,26 @@ void checkPcdHeader(const std::string& path) {
   if (h.body_bytes < needed) {
     throw fail(fmt::format("{} points need at least {} bytes of data, the file has {}", points,
                            needed, h.body_bytes));
+  }
+  // PCL's header parser goes on reading lines after DATA while they start with a header keyword,
+  // so binary data that happens to begin like one (after empty lines, which it skips) is parsed
+  // as header and crashes it (found by fuzz_pcd_model).
+  if (kind != "ascii") {
+    std::istringstream body(h.body_start);
+    std::string line;
+    while (std::getline(body, line) && line.empty()) {
+    }
+    std::istringstream words(line);
+    std::string first;
+    words >> first;
+    static const char* const kPrefixes[] = {"#",      "VERSION", "FIELDS",    "COLUMNS",
+                                            "SIZE",   "TYPE",    "COUNT",     "WIDTH",
+                                            "HEIGHT", "POINTS",  "VIEWPOINT", "DATA"};
+    for (const char* prefix : kPrefixes) {
+      if (first.rfind(prefix, 0) == 0) {
+        throw fail(fmt::format("PCD binary data begins like the header line '{}'", prefix));
+      }
+    }
   }
 }
 

@@ -54,6 +54,18 @@ TEST(MeshIo, ReadsPointsOnlyPlyAndPcd) {
   EXPECT_FALSE(pcd.isMesh());
 }
 
+TEST(MeshIo, BinaryPcdDataThatLooksLikeAHeaderLineIsRefused) {
+  // PCL's parser would read on past DATA into such data and crash (found by fuzz_pcd_model).
+  const auto dir = test::scratchDir("mesh_io_pcd_body");
+  std::string text =
+      "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\nHEIGHT 1\n"
+      "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA binary\n\nCOLUMNS a\n";
+  text.append(48, '\0');
+  writeText(dir / "body.pcd", text);
+  EXPECT_NE(errorOf(dir / "body.pcd").find("PCD binary data begins like the header line 'COLUMNS'"),
+            std::string::npos);
+}
+
 TEST(MeshIo, BadFilesGiveErrorsNamingTheFileAndProblem) {
   const auto dir = test::scratchDir("mesh_io_bad");
   EXPECT_NE(errorOf(dir / "missing.ply").find("no such file"), std::string::npos);
