@@ -44,9 +44,9 @@ class PcdSceneTest : public ::testing::Test {
     Eigen::Isometry3f wall_pose = Eigen::Isometry3f::Identity();
     wall_pose.translation() = Eigen::Vector3f(0, 0, 1.0f);
     cv::Mat labels;
-    const cv::Mat depth = test::renderDepth({{boxMesh({0.1f, 0.06f, 0.04f}), box_pose},
-                                             {boxMesh({2, 2, 0.01f}), wall_pose}},
-                                            k_, &labels);
+    const cv::Mat depth = test::renderDepth(
+        {{boxMesh({0.1f, 0.06f, 0.04f}), box_pose}, {boxMesh({2, 2, 0.01f}), wall_pose}}, k_,
+        &labels);
     std::vector<Eigen::Vector3f> scene, model;
     for (int v = 0; v < k_.height; ++v) {
       for (int u = 0; u < k_.width; ++u) {
