@@ -21,7 +21,7 @@ std::string entryBytes(const uint8_t* data, size_t size, uint64_t key) {
   const std::string rest(reinterpret_cast<const char*>(data) + 1, size - 1);
   if (data[0] % 2 == 0) return rest;
   stocs::fuzz::CacheEntryHeader h{};
-  std::memcpy(h.magic, "STOCSPPF", sizeof h.magic);
+  std::memcpy(h.magic, stocs::detail::kCacheMagic, sizeof h.magic);
   h.version = stocs::ModelCache::kFormatVersion;
   h.key = key;
   h.payload_size = rest.size();

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "../src/core/model_cache_format.h"
 #include "stocs/model_cache.h"
 #include "stocs/ply_writer.h"
 #include "stocs/shape_meshes.h"
@@ -30,16 +31,7 @@ inline std::string writeCacheFuzzModel(const std::filesystem::path& dir) {
   return file.string();
 }
 
-/// The header of a cache entry, as model_cache.cpp lays it out (format version 1).
-struct CacheEntryHeader {
-  char magic[8];
-  uint32_t version;
-  uint32_t reserved;
-  uint64_t key;
-  uint64_t payload_size;
-  uint64_t payload_hash;
-};
-static_assert(sizeof(CacheEntryHeader) == 40);
+using detail::CacheEntryHeader;
 
 /// The key of an entry, from its file name `<stem>-<key as 16 hex digits>.stocsmap`.
 inline uint64_t entryKeyFromName(const std::filesystem::path& entry) {

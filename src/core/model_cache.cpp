@@ -10,13 +10,15 @@
 #include <iterator>
 #include <sstream>
 
+#include "model_cache_format.h"
 #include "stocs/error.h"
 #include "stocs/mesh.h"
 
 namespace stocs {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'T', 'O', 'C', 'S', 'P', 'P', 'F'};
+using detail::CacheEntryHeader;
+using detail::kCacheMagic;
 
 std::string readFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -87,22 +89,14 @@ PreparedModel deserialise(const std::string& payload) {
   return m;
 }
 
-struct Header {
-  char magic[8];
-  uint32_t version;
-  uint32_t reserved;
-  uint64_t key;
-  uint64_t payload_size;
-  uint64_t payload_hash;
-};
-
 /// The entry's model, or an InputError saying why it cannot be trusted.
 PreparedModel readEntry(const std::filesystem::path& file, uint64_t key) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError("cannot be opened");
-  Header h{};
+  CacheEntryHeader h{};
   if (!in.read(reinterpret_cast<char*>(&h), sizeof h)) throw InputError("header is truncated");
-  if (std::memcmp(h.magic, kMagic, sizeof kMagic) != 0) throw InputError("not a stocs cache file");
+  if (std::memcmp(h.magic, kCacheMagic, sizeof kCacheMagic) != 0)
+    throw InputError("not a stocs cache file");
   if (h.version != ModelCache::kFormatVersion) {
     throw InputError(
         fmt::format("format version {} is not {}", h.version, ModelCache::kFormatVersion));
@@ -134,8 +128,8 @@ std::string writeEntry(const std::filesystem::path& file, uint64_t key, const Pr
   fs::create_directories(file.parent_path(), ec);
   if (ec) return fmt::format("cannot create {}: {}", file.parent_path().string(), ec.message());
   const std::string payload = serialise(m);
-  Header h{};
-  std::memcpy(h.magic, kMagic, sizeof kMagic);
+  CacheEntryHeader h{};
+  std::memcpy(h.magic, kCacheMagic, sizeof kCacheMagic);
   h.version = ModelCache::kFormatVersion;
   h.key = key;
   h.payload_size = payload.size();
