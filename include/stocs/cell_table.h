@@ -24,24 +24,24 @@ class CellTable {
     }
     mask_ = capacity - 1;
     size_ = 0;
-    keys_.assign(capacity, kEmpty);
-    ranges_.assign(capacity, Range{});
+    slots_.assign(capacity, Slot{});
   }
 
   /// The range of `key`, inserted empty if absent. An insertion may move every range, so a
   /// reference is valid until the next insertion.
   Range& findOrInsert(uint64_t key) {
-    if (keys_.empty()) reserve(8);
+    if (slots_.empty()) reserve(8);
     for (uint64_t h = hash(key);; h = (h + 1) & mask_) {
-      if (keys_[h] == key) return ranges_[h];
-      if (keys_[h] != kEmpty) continue;
-      if (2 * (size_ + 1) > keys_.size()) {
+      Slot& slot = slots_[h];
+      if (slot.key == key) return slot.range;
+      if (slot.key != kEmpty) continue;
+      if (2 * (size_ + 1) > slots_.size()) {
         grow();
         return findOrInsert(key);
       }
       ++size_;
-      keys_[h] = key;
-      return ranges_[h];
+      slot.key = key;
+      return slot.range;
     }
   }
 
@@ -49,37 +49,41 @@ class CellTable {
 
   /// The range of `key`, or nullptr.
   const Range* find(uint64_t key) const {
-    if (keys_.empty()) return nullptr;
+    if (slots_.empty()) return nullptr;
     for (uint64_t h = hash(key);; h = (h + 1) & mask_) {
-      if (keys_[h] == key) return &ranges_[h];
-      if (keys_[h] == kEmpty) return nullptr;
+      const Slot& slot = slots_[h];
+      if (slot.key == key) return &slot.range;
+      if (slot.key == kEmpty) return nullptr;
     }
   }
 
   /// Calls f(range) for every occupied slot, in slot order.
   template <class F>
   void forEachRange(F&& f) {
-    for (size_t h = 0; h < keys_.size(); ++h) {
-      if (keys_[h] != kEmpty) f(ranges_[h]);
+    for (Slot& slot : slots_) {
+      if (slot.key != kEmpty) f(slot.range);
     }
   }
 
  private:
   static constexpr uint64_t kEmpty = ~0ull;
+  // Key and range side by side: a lookup touches one cache line.
+  struct Slot {
+    uint64_t key = kEmpty;
+    Range range;
+  };
 
   void grow() {
-    std::vector<uint64_t> keys = std::move(keys_);
-    std::vector<Range> ranges = std::move(ranges_);
-    reserve(keys.size());  // doubles the capacity
-    for (size_t h = 0; h < keys.size(); ++h) {
-      if (keys[h] != kEmpty) findOrInsert(keys[h]) = ranges[h];
+    std::vector<Slot> slots = std::move(slots_);
+    reserve(slots.size());  // doubles the capacity
+    for (const Slot& slot : slots) {
+      if (slot.key != kEmpty) findOrInsert(slot.key) = slot.range;
     }
   }
 
   uint64_t hash(uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> shift_; }
 
-  std::vector<uint64_t> keys_;
-  std::vector<Range> ranges_;
+  std::vector<Slot> slots_;
   uint64_t mask_ = 0;
   size_t size_ = 0;
   int shift_ = 64;

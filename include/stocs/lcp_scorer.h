@@ -19,10 +19,10 @@ namespace stocs {
 struct LcpParams {
   float distance = 0.005f;         ///< delta_s, metres
   float normal_angle_deg = 30.0f;  ///< delta_n as an angle: normals must agree within it
-  /// Coarse-to-fine verification: after this fraction of the model points that can match, and
-  /// again after every doubling of the points seen, a hypothesis whose score extrapolated to all of
-  /// them is below `coarse_ratio` times the score it must reach is dropped. Model samples are
-  /// stored in random order, so the points seen are an unbiased subsample. 0 disables it (then
+  /// Coarse-to-fine verification: after this fraction of the model points (in whole chunks of
+  /// 16), and again after every doubling of the points seen, a hypothesis whose score extrapolated
+  /// to all of them is below `coarse_ratio` times the score it must reach is dropped. Model samples
+  /// are stored in random order, so the points seen are an unbiased subsample. 0 disables it (then
   /// only the exact bound stops early). The first check at 1/8 rather than 1/4 costs no accuracy on
   /// the real frames and halves the work spent on the many hopeless hypotheses (BENCHMARKS.md).
   float coarse_fraction = 0.125f;
@@ -39,6 +39,17 @@ struct LcpDetail {
   float mean_confidence = 0;  ///< mean network probability of the matched segment points
 };
 
+/// The objective over the first model points of a hypothesis (LcpScorer::scoreHead), to be
+/// finished by LcpScorer::finishScore.
+struct PartialScore {
+  float total = 0;            ///< objective over the points seen
+  uint32_t seen = 0;          ///< model points seen (in model order)
+  uint32_t model_points = 0;  ///< model points in all
+
+  /// The objective extrapolated to all model points (the points seen are an unbiased subsample).
+  float extrapolated() const { return seen ? total * model_points / seen : 0.0f; }
+};
+
 class LcpScorer {
  public:
   LcpScorer(const SoftSegment& segment, const LcpParams& params);
@@ -49,6 +60,16 @@ class LcpScorer {
   /// far below it (a heuristic: see coarse_fraction).
   float score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1,
               float must_reach = -std::numeric_limits<float>::infinity()) const;
+
+  /// Two-step verification, to rank the hypotheses of a base before finishing any: the objective
+  /// over the first coarse_fraction of the model points (all of them when it is 0), then the rest
+  /// as score() does, with the coarse checks and the early stop against `must_reach`.
+  /// finishScore(scoreHead(x)) is score(x) with the same must_reach.
+  PartialScore scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                         int region = -1) const;
+  float finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                    PartialScore head,
+                    float must_reach = -std::numeric_limits<float>::infinity()) const;
 
   /// The objective with its parts (no early stop).
   LcpDetail detail(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1) const;
@@ -63,6 +84,12 @@ class LcpScorer {
   const SoftSegment& segment_;
   LcpParams params_;
   const NeighbourhoodGrid& gridOf(int region) const;
+  static constexpr uint32_t kChunk = 16;  // model points per step of the facing test and checks
+  /// Model points seen at the first coarse check (whole chunks).
+  uint32_t headSize(size_t model_points) const;
+  /// Continues `partial` over model points [partial.seen, end); false on an early stop.
+  bool advance(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+               PartialScore& partial, uint32_t end, float must_reach) const;
 
   NeighbourhoodGrid grid_;                                   // all points
   std::unordered_map<int, NeighbourhoodGrid> region_grids_;  // the points of each region

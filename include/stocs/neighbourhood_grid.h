@@ -2,7 +2,9 @@
 // Nearest-point queries within a fixed radius, for the verification inner loop. Each occupied cell
 // (side = the radius) lists the points of its 27-neighbourhood contiguously, so a query is one hash
 // lookup and one linear scan, with no pointer chasing. Building costs 27 entries per point, which
-// pays off when, as in scoring, the queries outnumber the points by orders of magnitude.
+// pays off when, as in scoring, the queries outnumber the points by orders of magnitude. The lists
+// hold 4-byte indices into one copy of the points rather than copies of the points and their
+// indices, a quarter of the memory at the same query time.
 
 #include <Eigen/Core>
 #include <vector>
@@ -28,8 +30,9 @@ class NeighbourhoodGrid {
     const CellTable::Range* r = table_.find(packVoxelCell(voxelCell(q, inv_radius_)));
     if (!r) return;
     for (uint32_t k = r->begin; k < r->end; ++k) {
-      const float d2 = (points_[k] - q).squaredNorm();
-      if (d2 < radius2_) visit(static_cast<int>(index_[k]), d2);
+      const uint32_t j = lists_[k];
+      const float d2 = (points_[j] - q).squaredNorm();
+      if (d2 < radius2_) visit(static_cast<int>(original_[j]), d2);
     }
   }
 
@@ -54,9 +57,10 @@ class NeighbourhoodGrid {
 
  private:
   float radius_ = 0, radius2_ = 0, inv_radius_ = 0;
-  std::vector<Eigen::Vector3f> points_;  // neighbourhood lists, concatenated
-  std::vector<uint32_t> index_;          // original index of points_[k]
-  CellTable table_;                      // cell -> its neighbourhood list
+  std::vector<Eigen::Vector3f> points_;  // the subset's points
+  std::vector<uint32_t> original_;       // index of points_[j] in the constructor's vector
+  std::vector<uint32_t> lists_;  // neighbourhood lists of indices into points_, concatenated
+  CellTable table_;              // cell -> its neighbourhood list
 };
 
 }  // namespace stocs

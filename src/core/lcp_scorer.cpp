@@ -3,21 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "stocs/error.h"
 
 namespace stocs {
-namespace {
-
-struct Span {
-  const uint32_t* data;
-  size_t count;
-  size_t size() const { return count; }
-  uint32_t operator[](size_t k) const { return data[k]; }
-};
-
-}  // namespace
 
 void LcpParams::validate() const {
   if (!(distance > 0.0f && distance <= 0.1f)) {
@@ -61,48 +52,84 @@ const NeighbourhoodGrid& LcpScorer::gridOf(int region) const {
   return it == region_grids_.end() ? empty_ : it->second;
 }
 
-float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
-                       float must_reach) const {
+uint32_t LcpScorer::headSize(size_t model_points) const {
+  // Rounded up to whole chunks, so that every later check falls on a chunk boundary.
+  const auto n = static_cast<uint32_t>(model_points);
+  if (params_.coarse_fraction <= 0) return n;
+  const auto head = static_cast<uint32_t>(std::ceil(params_.coarse_fraction * n));
+  return std::min(n, (head + kChunk - 1) / kChunk * kChunk);
+}
+
+bool LcpScorer::advance(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                        PartialScore& partial, uint32_t end, float must_reach) const {
   const Eigen::Matrix3f r = pose.linear();
   const Eigen::Vector3f t = pose.translation();
   // A model point can only match when its normal n satisfies n.v <= sin(delta_n) for the viewing
-  // ray v: scene normals face the camera (N.v <= 0) and must be within delta_n of n. Counting the
-  // points that pass this cheap test first gives an exact upper bound for the early stop. The test
-  // runs in the model frame, where the camera-frame point R m + t is m + R^T t up to the rotation:
-  // (R n).(R m + t) = n.(m + R^T t) and |R m + t| = |m + R^T t|, so no point is transformed.
+  // ray v: scene normals face the camera (N.v <= 0) and must be within delta_n of n. The test runs
+  // in the model frame, where the camera-frame point R m + t is m + R^T t up to the rotation:
+  // (R n).(R m + t) = n.(m + R^T t) and |R m + t| = |m + R^T t|, so no point is transformed. It
+  // runs lazily, a chunk at a time, because most hypotheses stop after a few chunks.
   const Eigen::Vector3f camera_offset = r.transpose() * t;
   const float sin2 = sin_normal_ * sin_normal_;
-  thread_local std::vector<uint32_t> facing_storage;
-  facing_storage.resize(model.size());
-  size_t facing_count = 0;
-  for (size_t i = 0; i < model.size(); ++i) {  // branch-free: about half the points pass
-    const Eigen::Vector3f q = model.points[i] + camera_offset;
-    const float nq = model.normals[i].dot(q);
-    facing_storage[facing_count] = static_cast<uint32_t>(i);
-    facing_count += nq <= 0 || nq * nq <= sin2 * q.squaredNorm();
-  }
-  const Span facing{facing_storage.data(), facing_count};
   const NeighbourhoodGrid& grid = gridOf(region);
-  // Coarse-to-fine: checks after coarse_fraction of the facing points and again after every
-  // doubling of the points seen (1/8, 1/4, 1/2 by default).
-  size_t coarse_check = static_cast<size_t>(std::ceil(params_.coarse_fraction * facing.size()));
-  float total = 0;
-  for (size_t visited = 0; visited < facing.size(); ++visited) {
-    // Check the bound every 16 candidates: cheap, and exact because it never discards a pose that
-    // could reach must_reach.
-    const size_t remaining = facing.size() - visited;
-    if ((visited & 15) == 0 && total + remaining * max_probability_ < must_reach) return -1.0f;
-    if (visited == coarse_check && coarse_check > 0) {
-      if (total * facing.size() < params_.coarse_ratio * must_reach * visited) return -1.0f;
-      coarse_check *= 2;
+  const auto n = static_cast<uint32_t>(model.size());
+  // Coarse-to-fine: checks after every coarse_fraction of the model points (1/8, 2/8, ... by
+  // default). The points seen are a sample drawn without replacement from the model's, so the
+  // relative error of the extrapolated objective shrinks as sqrt((1 - f) / f) at fraction f seen,
+  // and so does the margin allowed below must_reach: 1 - coarse_ratio at the first check (0.5,
+  // 0.33, 0.25, 0.19, ..., 0.07 by default).
+  const uint32_t first_check = params_.coarse_fraction > 0 ? headSize(n) : 0;
+  std::array<uint32_t, kChunk> facing;
+  while (partial.seen < end) {
+    // Exact: even if every remaining point matched at the highest probability, must_reach is out
+    // of reach.
+    if (partial.total + (n - partial.seen) * max_probability_ < must_reach) return false;
+    if (first_check > 0 && partial.seen > 0 && partial.seen % first_check == 0) {
+      const float margin = (1.0f - params_.coarse_ratio) *
+                           std::sqrt(static_cast<float>(n - partial.seen) / partial.seen /
+                                     (static_cast<float>(n - first_check) / first_check));
+      if (partial.total * n < (1.0f - margin) * must_reach * partial.seen) return false;
     }
-    const uint32_t i = facing[visited];
-    const int s = grid.closest(r * model.points[i] + t);
-    if (s < 0) continue;
-    if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
-      total += segment_.probability[s];
+    const uint32_t chunk_end = std::min(end, partial.seen + kChunk);
+    uint32_t count = 0;
+    for (uint32_t i = partial.seen; i < chunk_end; ++i) {  // branch-free: about half pass
+      const Eigen::Vector3f q = model.points[i] + camera_offset;
+      const float nq = model.normals[i].dot(q);
+      facing[count] = i;
+      count += nq <= 0 || nq * nq <= sin2 * q.squaredNorm();
+    }
+    for (uint32_t k = 0; k < count; ++k) {
+      const uint32_t i = facing[k];
+      const int s = grid.closest(r * model.points[i] + t);
+      if (s < 0) continue;
+      if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
+        partial.total += segment_.probability[s];
+    }
+    partial.seen = chunk_end;
   }
-  return total;
+  return true;
+}
+
+float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                       float must_reach) const {
+  PartialScore partial;
+  return finishScore(model, pose, region, partial, must_reach);
+}
+
+PartialScore LcpScorer::scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                                  int region) const {
+  PartialScore head;
+  head.model_points = static_cast<uint32_t>(model.size());
+  advance(model, pose, region, head, headSize(model.size()),
+          -std::numeric_limits<float>::infinity());
+  return head;
+}
+
+float LcpScorer::finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                             PartialScore partial, float must_reach) const {
+  partial.model_points = static_cast<uint32_t>(model.size());
+  return advance(model, pose, region, partial, partial.model_points, must_reach) ? partial.total
+                                                                                 : -1.0f;
 }
 
 LcpDetail LcpScorer::detail(const ObjectModel& model, const Eigen::Isometry3f& pose,

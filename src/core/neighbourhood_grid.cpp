@@ -32,7 +32,11 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
   // A surface's cells and their neighbours number a few times its points, far below the 27 per
   // point of the worst case; the table grows if needed.
   table_.reserve(4 * subset.size());
+  points_.reserve(subset.size());
+  original_.reserve(subset.size());
   for (uint32_t i : subset) {
+    points_.push_back(points[i]);
+    original_.push_back(i);
     forEachNeighbourCell(points[i], [&](uint64_t key) { ++table_.findOrInsert(key).end; });
   }
   uint32_t total = 0;
@@ -41,14 +45,10 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     total += r.end;
     r.end = r.begin;  // fill cursor
   });
-  points_.resize(total);
-  index_.resize(total);
-  for (uint32_t i : subset) {
-    forEachNeighbourCell(points[i], [&](uint64_t key) {
-      CellTable::Range& r = table_.findOrInsert(key);
-      points_[r.end] = points[i];
-      index_[r.end++] = i;
-    });
+  lists_.resize(total);
+  for (uint32_t j = 0; j < points_.size(); ++j) {
+    forEachNeighbourCell(points_[j],
+                         [&](uint64_t key) { lists_[table_.findOrInsert(key).end++] = j; });
   }
 }
 

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -26,7 +28,7 @@ double secondsSince(Clock::time_point t) {
 struct BaseOutcome {
   bool tried = false, sampled = false;
   int sets = 0;
-  long hypotheses = 0, duplicates = 0;
+  long hypotheses = 0, duplicates = 0, normal_mismatches = 0;
   float score = -std::numeric_limits<float>::infinity();
   int region = -1;  // instance region of the base, -1 without regions
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
@@ -125,6 +127,10 @@ void StocsParams::validate() const {
     throw InputError(
         fmt::format("duplicate hypothesis distance {} m is outside [0, 0.1]", duplicate_distance));
   }
+  if (min_normal_agreement < 0 || min_normal_agreement > 4) {
+    throw InputError(
+        fmt::format("minimum normal agreement {} is outside [0, 4]", min_normal_agreement));
+  }
   if (bases < 1 || bases > 1000000)
     throw InputError(fmt::format("bases {} is outside [1, 1000000]", bases));
   if (!(time_budget >= 0) || time_budget > 3600) {
@@ -143,9 +149,11 @@ void StocsParams::validate() const {
 }
 
 StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& params)
-    : model_(model), params_(params), matcher_(model, params.congruent), proximity_(model.model) {
-  params_.validate();
-}
+    : model_(model),
+      params_((params.validate(), params)),
+      matcher_(model, params.congruent),
+      proximity_(model.model),
+      cos_normal_(std::cos(params.lcp.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {}
 
 bool StocsEstimator::isNearDuplicate(const PlacedPose& pose,
                                      const std::vector<PlacedPose>& scored) const {
@@ -155,6 +163,15 @@ bool StocsEstimator::isNearDuplicate(const PlacedPose& pose,
     return (s.centre - pose.centre).squaredNorm() < d * d &&
            proximity_.within(pose.pose, s.pose, d);
   });
+}
+
+bool StocsEstimator::normalsAgree(const Eigen::Isometry3f& pose, const CongruentSet& set,
+                                  const std::array<Eigen::Vector3f, 4>& base_normals) const {
+  int agree = 0;
+  for (int k = 0; k < 4; ++k) {
+    agree += (pose.linear() * model_.model.normals[set[k]]).dot(base_normals[k]) > cos_normal_;
+  }
+  return agree >= params_.min_normal_agreement;
 }
 
 PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
@@ -188,7 +205,9 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<float> thread_top;
     std::vector<std::pair<int, float>> scratch;
     std::vector<CongruentSet> sets;
-    std::vector<PlacedPose> scored;  // hypotheses of the current base
+    std::vector<PlacedPose> scored;   // hypotheses of the current base
+    std::vector<PartialScore> heads;  // their objectives over the first model points
+    std::vector<uint32_t> order;      // the order in which they are finished
 #pragma omp for schedule(dynamic, 1)
     for (int b = 0; b < params_.bases; ++b) {
       if (budgeted && Clock::now() > deadline) continue;
@@ -215,24 +234,40 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
 
       t = Clock::now();
       scored.clear();
+      heads.clear();
       for (const CongruentSet& set : sets) {
         const std::array<Eigen::Vector3f, 4> mp = {model.points[set[0]], model.points[set[1]],
                                                    model.points[set[2]], model.points[set[3]]};
         const std::optional<Eigen::Isometry3f> pose = fitRigid(mp, bp, params_.max_fit_rms);
         if (!pose) continue;
+        if (!normalsAgree(*pose, set, bn)) {
+          ++out.normal_mismatches;
+          continue;
+        }
         const PlacedPose placed{*pose, *pose * proximity_.centre()};
         if (isNearDuplicate(placed, scored)) {
           ++out.duplicates;
           continue;
         }
         scored.push_back(placed);
-        ++out.hypotheses;
+        heads.push_back(scorer.scoreHead(model, *pose, out.region));
+      }
+      out.hypotheses = static_cast<long>(scored.size());
+      // Finish the hypotheses most promising by their head first: the base's best is then found
+      // early, and the coarse checks and the exact bound drop most others right after their head.
+      order.resize(scored.size());
+      std::iota(order.begin(), order.end(), 0u);
+      std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return heads[a].extrapolated() > heads[b].extrapolated();
+      });
+      for (uint32_t h : order) {
         const float kth =
             thread_top.size() < keep ? -std::numeric_limits<float>::infinity() : thread_top.front();
-        const float s = scorer.score(model, *pose, out.region, std::max(kth, out.score));
-        if (s > out.score) {  // strict: the first set reaching a score keeps it
+        const float s = scorer.finishScore(model, scored[h].pose, out.region, heads[h],
+                                           std::max(kth, out.score));
+        if (s > out.score) {  // strict: of equal scores, the first in this order keeps it
           out.score = s;
-          out.pose = *pose;
+          out.pose = scored[h].pose;
         }
       }
       out.stages.verification = secondsSince(t);
@@ -252,6 +287,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.congruent_sets += out.sets;
     result.hypotheses += out.hypotheses;
     result.duplicates += out.duplicates;
+    result.normal_mismatches += out.normal_mismatches;
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;

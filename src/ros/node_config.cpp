@@ -289,6 +289,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   congruent.rejectUnknownKeys();
   stocs.get("max_fit_rms", p.stocs.max_fit_rms);
   stocs.get("duplicate_distance", p.stocs.duplicate_distance);
+  stocs.get("min_normal_agreement", p.stocs.min_normal_agreement);
   MapReader lcp = stocs.map("lcp");
   lcp.get("distance", p.stocs.lcp.distance);
   lcp.get("normal_angle_deg", p.stocs.lcp.normal_angle_deg);

@@ -49,6 +49,10 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(stocs);
   cmd.add_option("--fit-rms", p.stocs.max_fit_rms, "Largest RMS of a base-to-set rigid fit, m")
       ->group(stocs);
+  cmd.add_option("--min-normal-agreement", p.stocs.min_normal_agreement,
+                 "Base points (0-4) whose normal must agree with the model's within delta_n for "
+                 "a fit to be scored")
+      ->group(stocs);
   cmd.add_option("--delta-s", p.stocs.lcp.distance, "delta_s: LCP distance threshold, m")
       ->group(stocs);
   cmd.add_option("--delta-n", p.stocs.lcp.normal_angle_deg, "delta_n: LCP normal angle, degrees")

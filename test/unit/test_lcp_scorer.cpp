@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 #include <random>
 
@@ -137,14 +138,50 @@ TEST(LcpScorer, CoarseCheckDropsOnlyHypothesesFarBelowTheTarget) {
   const float full = scorer.detail(patch.model, id).score;
   // 800 model points over the segment and the 2 columns within delta_s of its edge match.
   ASSERT_NEAR(full, 880.0f / 800, 1e-4f);
-  // After a quarter of the model (about 0.27 scored) a target of 3 is far out of line: dropped,
+  // After an eighth of the model (about 0.14 scored) a target of 3 is far out of line: dropped,
   // although the exact bound alone, loose here, scores it in full.
   EXPECT_LT(scorer.score(patch.model, id, -1, 3.0f), 0.0f);
   LcpParams exact;
   exact.coarse_fraction = 0;
   EXPECT_NEAR(LcpScorer(patch.segment, exact).score(patch.model, id, -1, 3.0f), full, 1e-4f);
-  // Within the coarse ratio of its target the hypothesis is scored in full.
-  EXPECT_NEAR(scorer.score(patch.model, id, -1, 1.5f), full, 1e-4f);
+  // A hypothesis that reaches its target is scored in full.
+  EXPECT_NEAR(scorer.score(patch.model, id, -1, 0.95f * full), full, 1e-4f);
+}
+
+TEST(LcpScorer, LaterCoarseChecksAllowLessMargin) {
+  const HalfCoveredPatch patch;
+  const LcpScorer scorer(patch.segment, LcpParams{});
+  const Eigen::Isometry3f id = Eigen::Isometry3f::Identity();
+  const float full = scorer.detail(patch.model, id).score;
+  // A target of 2: the first eighth extrapolates to about 1.1, above half of it, so the first
+  // check keeps the hypothesis; the second check (a quarter seen) allows a margin of only
+  // 0.5 * sqrt(3/7) = 0.33 below the target and drops it.
+  const PartialScore head = scorer.scoreHead(patch.model, id);
+  ASSERT_GT(head.extrapolated(), 0.5f * 2.0f);
+  EXPECT_LT(scorer.score(patch.model, id, -1, 2.0f), 0.0f);
+  // At 7/8 seen the margin is 0.5 * sqrt(1/49) = 0.07: a target 10% above the final score drops
+  // the hypothesis before its end, where the exact bound (loose here) would not.
+  EXPECT_LT(scorer.score(patch.model, id, -1, 1.1f * full), 0.0f);
+  LcpParams exact;
+  exact.coarse_fraction = 0;
+  EXPECT_NEAR(LcpScorer(patch.segment, exact).score(patch.model, id, -1, 1.1f * full), full, 1e-4f);
+}
+
+TEST(LcpScorer, HeadThenFinishIsTheWholeScore) {
+  const HalfCoveredPatch patch;
+  const LcpScorer scorer(patch.segment, LcpParams{});
+  const Eigen::Isometry3f id = Eigen::Isometry3f::Identity();
+  const PartialScore head = scorer.scoreHead(patch.model, id);
+  // The head is the first coarse_fraction of the model (1600 / 8 = 200) in whole chunks of 16.
+  EXPECT_EQ(head.seen, 208u);
+  EXPECT_EQ(head.model_points, 1600u);
+  const float full = scorer.detail(patch.model, id).score;
+  EXPECT_NEAR(head.extrapolated(), full, 0.3f * full);  // an unbiased sample of the model
+  for (float target : {-std::numeric_limits<float>::infinity(), 1.0f, 1.2f, 2.0f, 3.0f}) {
+    EXPECT_EQ(scorer.finishScore(patch.model, id, -1, head, target),
+              scorer.score(patch.model, id, -1, target))
+        << "target " << target;
+  }
 }
 
 TEST(LcpScorer, InvalidThresholdsAreRejected) {

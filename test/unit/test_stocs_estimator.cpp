@@ -75,6 +75,24 @@ TEST_F(StocsEstimatorTest, FindsTheRenderedPose) {
   }
 }
 
+TEST_F(StocsEstimatorTest, FitsThatTurnTheModelOverAreNotScored) {
+  PipelineParams params;
+  params.stocs.seed = 5;
+  params.stocs.min_normal_agreement = 0;
+  const ObjectEstimate all =
+      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  params.stocs.min_normal_agreement = 1;
+  const ObjectEstimate agreeing =
+      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  EXPECT_EQ(all.estimate.normal_mismatches, 0);
+  // The block's flat faces give fits with every normal reversed; they are skipped, and the pose
+  // found is as good.
+  EXPECT_GT(agreeing.estimate.normal_mismatches, 0);
+  EXPECT_LT(agreeing.estimate.hypotheses, all.estimate.hypotheses);
+  ASSERT_TRUE(agreeing.estimate.found);
+  EXPECT_LT(addsOf(agreeing.estimate), 0.05 * model_.model.diameter);
+}
+
 TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
   PipelineParams params;
   params.stocs.seed = 42;
@@ -183,6 +201,9 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.instances = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.min_normal_agreement = 5;
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.instance_separation = 0;

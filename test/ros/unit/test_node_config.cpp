@@ -79,6 +79,7 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.congruent.min_line_angle_deg, d.stocs.congruent.min_line_angle_deg);
   EXPECT_EQ(p.stocs.max_fit_rms, d.stocs.max_fit_rms);
   EXPECT_EQ(p.stocs.duplicate_distance, d.stocs.duplicate_distance);
+  EXPECT_EQ(p.stocs.min_normal_agreement, d.stocs.min_normal_agreement);
   EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
   EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
   EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
