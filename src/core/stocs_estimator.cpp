@@ -77,13 +77,16 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           size_t refined_bases, size_t count,
                                           const ObjectModel& model, const SoftSegment& segment,
                                           const LcpScorer& scorer, const StocsParams& params,
-                                          const FreeSpaceCheck* free_space) {
+                                          const FreeSpaceCheck* free_space, int threads) {
   const size_t first = std::min(refined_bases, ranked.size());
   std::optional<IcpRefiner> icp;
   if (params.icp.enabled) icp.emplace(segment, params.icp);
-  std::vector<Hypothesis> pool;
+  // The candidates are refined in parallel: each refinement is independent and reads only shared
+  // const state.
+  std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 0; k < first; ++k) {
-    pool.push_back(refine(ranked[k], model, icp ? &*icp : nullptr, scorer, free_space));
+    pool[k] = refine(ranked[k], model, icp ? &*icp : nullptr, scorer, free_space);
   }
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
@@ -301,7 +304,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   }
   const Clock::time_point t = Clock::now();
   result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
-                                     model, segment, scorer, params_, free_space);
+                                     model, segment, scorer, params_, free_space, threads);
   if (params_.icp.enabled) result.stages.refinement = secondsSince(t);
   result.found = true;
   const InstancePose& best = result.instances.front();
