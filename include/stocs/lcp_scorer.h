@@ -20,11 +20,11 @@ struct LcpParams {
   float distance = 0.005f;         ///< delta_s, metres
   float normal_angle_deg = 30.0f;  ///< delta_n as an angle: normals must agree within it
   /// Coarse-to-fine verification: after this fraction of the model points (in whole chunks of
-  /// 16), and again after every doubling of the points seen, a hypothesis whose score extrapolated
-  /// to all of them is below `coarse_ratio` times the score it must reach is dropped. Model samples
-  /// are stored in random order, so the points seen are an unbiased subsample. 0 disables it (then
-  /// only the exact bound stops early). The first check at 1/8 rather than 1/4 costs no accuracy on
-  /// the real frames and halves the work spent on the many hopeless hypotheses (BENCHMARKS.md).
+  /// 16), and again after every further such fraction, a hypothesis whose score extrapolated to all
+  /// of them is too far below the score it must reach is dropped: by 1 - `coarse_ratio` of it at
+  /// the first check, by less at later ones as the sample grows (see LcpScorer::advance). Model
+  /// samples are stored in random order, so the points seen are an unbiased subsample. 0 disables
+  /// it (then only the exact bound stops early). Accuracy before and after: BENCHMARKS.md.
   float coarse_fraction = 0.125f;
   float coarse_ratio = 0.5f;
 
