@@ -42,12 +42,8 @@ struct LcpDetail {
 /// The objective over the first model points of a hypothesis (LcpScorer::scoreHead), to be
 /// finished by LcpScorer::finishScore.
 struct PartialScore {
-  float total = 0;            ///< objective over the points seen
-  uint32_t seen = 0;          ///< model points seen (in model order)
-  uint32_t model_points = 0;  ///< model points in all
-
-  /// The objective extrapolated to all model points (the points seen are an unbiased subsample).
-  float extrapolated() const { return seen ? total * model_points / seen : 0.0f; }
+  float total = 0;    ///< objective over the points seen
+  uint32_t seen = 0;  ///< model points seen (in model order)
 };
 
 class LcpScorer {
@@ -70,6 +66,13 @@ class LcpScorer {
   float finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                     PartialScore head,
                     float must_reach = -std::numeric_limits<float>::infinity()) const;
+
+  /// The objective's normal test: a model normal (in the camera frame) and a scene normal agree
+  /// when they are within delta_n.
+  bool normalsAgree(const Eigen::Vector3f& model_normal,
+                    const Eigen::Vector3f& scene_normal) const {
+    return model_normal.dot(scene_normal) > cos_normal_;
+  }
 
   /// The objective with its parts (no early stop).
   LcpDetail detail(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1) const;

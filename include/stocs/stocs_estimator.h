@@ -108,16 +108,15 @@ class StocsEstimator {
   };
   /// True when `pose` moves no model point farther than duplicate_distance from one of `scored`.
   bool isNearDuplicate(const PlacedPose& pose, const std::vector<PlacedPose>& scored) const;
-  /// True when enough base normals agree with their model normals under `pose`
-  /// (StocsParams::min_normal_agreement).
-  bool normalsAgree(const Eigen::Isometry3f& pose, const CongruentSet& set,
+  /// True when enough base normals agree with their model normals under `pose`, by the
+  /// objective's normal test (StocsParams::min_normal_agreement).
+  bool normalsAgree(const LcpScorer& scorer, const Eigen::Isometry3f& pose, const CongruentSet& set,
                     const std::array<Eigen::Vector3f, 4>& base_normals) const;
 
   const PreparedModel& model_;
   StocsParams params_;
   CongruentSetMatcher matcher_;
   PoseProximity proximity_;
-  float cos_normal_;  // cos(delta_n)
 };
 
 }  // namespace stocs

@@ -102,7 +102,7 @@ bool LcpScorer::advance(const ObjectModel& model, const Eigen::Isometry3f& pose,
       const uint32_t i = facing[k];
       const int s = grid.closest(r * model.points[i] + t);
       if (s < 0) continue;
-      if ((r * model.normals[i]).dot(segment_.normals[s]) > cos_normal_)
+      if (normalsAgree(r * model.normals[i], segment_.normals[s]))
         partial.total += segment_.probability[s];
     }
     partial.seen = chunk_end;
@@ -119,7 +119,6 @@ float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, 
 PartialScore LcpScorer::scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                   int region) const {
   PartialScore head;
-  head.model_points = static_cast<uint32_t>(model.size());
   advance(model, pose, region, head, headSize(model.size()),
           -std::numeric_limits<float>::infinity());
   return head;
@@ -127,9 +126,8 @@ PartialScore LcpScorer::scoreHead(const ObjectModel& model, const Eigen::Isometr
 
 float LcpScorer::finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                              PartialScore partial, float must_reach) const {
-  partial.model_points = static_cast<uint32_t>(model.size());
-  return advance(model, pose, region, partial, partial.model_points, must_reach) ? partial.total
-                                                                                 : -1.0f;
+  const auto n = static_cast<uint32_t>(model.size());
+  return advance(model, pose, region, partial, n, must_reach) ? partial.total : -1.0f;
 }
 
 LcpDetail LcpScorer::detail(const ObjectModel& model, const Eigen::Isometry3f& pose,
@@ -141,7 +139,7 @@ LcpDetail LcpScorer::detail(const ObjectModel& model, const Eigen::Isometry3f& p
     const Eigen::Vector3f n = pose.linear() * model.normals[i];
     d.facing += n.dot(p) < 0;
     const int s = closest(p, region);
-    if (s < 0 || !(n.dot(segment_.normals[s]) > cos_normal_)) continue;
+    if (s < 0 || !normalsAgree(n, segment_.normals[s])) continue;
     d.score += segment_.probability[s];
     confidence += segment_.confidence[s];
     ++d.matched;

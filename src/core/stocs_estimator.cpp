@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -155,8 +154,7 @@ StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& pa
     : model_(model),
       params_((params.validate(), params)),
       matcher_(model, params.congruent),
-      proximity_(model.model),
-      cos_normal_(std::cos(params.lcp.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {}
+      proximity_(model.model) {}
 
 bool StocsEstimator::isNearDuplicate(const PlacedPose& pose,
                                      const std::vector<PlacedPose>& scored) const {
@@ -168,11 +166,12 @@ bool StocsEstimator::isNearDuplicate(const PlacedPose& pose,
   });
 }
 
-bool StocsEstimator::normalsAgree(const Eigen::Isometry3f& pose, const CongruentSet& set,
+bool StocsEstimator::normalsAgree(const LcpScorer& scorer, const Eigen::Isometry3f& pose,
+                                  const CongruentSet& set,
                                   const std::array<Eigen::Vector3f, 4>& base_normals) const {
   int agree = 0;
   for (int k = 0; k < 4; ++k) {
-    agree += (pose.linear() * model_.model.normals[set[k]]).dot(base_normals[k]) > cos_normal_;
+    agree += scorer.normalsAgree(pose.linear() * model_.model.normals[set[k]], base_normals[k]);
   }
   return agree >= params_.min_normal_agreement;
 }
@@ -243,7 +242,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
                                                    model.points[set[2]], model.points[set[3]]};
         const std::optional<Eigen::Isometry3f> pose = fitRigid(mp, bp, params_.max_fit_rms);
         if (!pose) continue;
-        if (!normalsAgree(*pose, set, bn)) {
+        if (!normalsAgree(scorer, *pose, set, bn)) {
           ++out.normal_mismatches;
           continue;
         }
@@ -258,11 +257,11 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       out.hypotheses = static_cast<long>(scored.size());
       // Finish the hypotheses most promising by their head first: the base's best is then found
       // early, and the coarse checks and the exact bound drop most others right after their head.
+      // Every head covers the same model points, so their objectives compare directly.
       order.resize(scored.size());
       std::iota(order.begin(), order.end(), 0u);
-      std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        return heads[a].extrapolated() > heads[b].extrapolated();
-      });
+      std::stable_sort(order.begin(), order.end(),
+                       [&](uint32_t a, uint32_t b) { return heads[a].total > heads[b].total; });
       for (uint32_t h : order) {
         const float kth =
             thread_top.size() < keep ? -std::numeric_limits<float>::infinity() : thread_top.front();

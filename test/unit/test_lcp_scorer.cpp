@@ -157,7 +157,7 @@ TEST(LcpScorer, LaterCoarseChecksAllowLessMargin) {
   // check keeps the hypothesis; the second check (a quarter seen) allows a margin of only
   // 0.5 * sqrt(3/7) = 0.33 below the target and drops it.
   const PartialScore head = scorer.scoreHead(patch.model, id);
-  ASSERT_GT(head.extrapolated(), 0.5f * 2.0f);
+  ASSERT_GT(head.total * 1600 / head.seen, 0.5f * 2.0f);
   EXPECT_LT(scorer.score(patch.model, id, -1, 2.0f), 0.0f);
   // At 7/8 seen the margin is 0.5 * sqrt(1/49) = 0.07: a target 10% above the final score drops
   // the hypothesis before its end, where the exact bound (loose here) would not.
@@ -174,9 +174,8 @@ TEST(LcpScorer, HeadThenFinishIsTheWholeScore) {
   const PartialScore head = scorer.scoreHead(patch.model, id);
   // The head is the first coarse_fraction of the model (1600 / 8 = 200) in whole chunks of 16.
   EXPECT_EQ(head.seen, 208u);
-  EXPECT_EQ(head.model_points, 1600u);
   const float full = scorer.detail(patch.model, id).score;
-  EXPECT_NEAR(head.extrapolated(), full, 0.3f * full);  // an unbiased sample of the model
+  EXPECT_NEAR(head.total * 1600 / head.seen, full, 0.3f * full);  // an unbiased sample
   for (float target : {-std::numeric_limits<float>::infinity(), 1.0f, 1.2f, 2.0f, 3.0f}) {
     EXPECT_EQ(scorer.finishScore(patch.model, id, -1, head, target),
               scorer.score(patch.model, id, -1, target))
