@@ -124,7 +124,7 @@ model_cache: none
 estimation:
   segment: {min_probability: 0.3, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
-  stocs: {bases: 40, seed: 9, instances: 4, instance_separation: 0.2,
+  stocs: {bases: 40, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
           icp: {enabled: false, candidates: 3}, free_space: {enabled: false, margin: 0.02},
           lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
@@ -173,6 +173,7 @@ estimation:
   EXPECT_FLOAT_EQ(c.estimation.stocs.free_space.margin, 0.02f);
   EXPECT_EQ(c.estimation.stocs.instances, 4);
   EXPECT_FLOAT_EQ(c.estimation.stocs.instance_separation, 0.2f);
+  EXPECT_EQ(c.estimation.stocs.min_normal_agreement, 2);
 }
 
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
@@ -188,6 +189,8 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
       {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
       {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
       {box + "estimation: {stocs: {instances: 0}}\n", "instances 0 is outside [1, 100]"},
+      {box + "estimation: {stocs: {min_normal_agreement: 5}}\n",
+       "minimum normal agreement 5 is outside [0, 4]"},
       {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
       {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
       {box + "input: {probability: multichannel, channels: [box, cup]}\n",
