@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "stocs/model_cache.h"
+#include "stocs/point_grid.h"
 #include "stocs/random.h"
 
 namespace stocs {
@@ -36,13 +37,27 @@ using CongruentSet = std::array<uint16_t, 4>;
 
 class CongruentSetMatcher {
  public:
+  /// Buffers of one search, kept by the caller (one per thread) so that a search allocates
+  /// nothing once they have grown.
+  struct Workspace {
+    std::vector<ModelPair> first, second;  // model pairs matching each base pair's PPF
+    std::vector<Eigen::Vector3f> meeting;  // intermediate point of each second pair
+    PointGrid grid;                        // over `meeting`
+  };
+
   CongruentSetMatcher(const PreparedModel& model, const CongruentSetParams& params);
 
   /// Congruent sets for the base (points and normals in base order), at most max_sets, no
   /// duplicates, written to `out`. Returns how many were written.
   size_t find(const std::array<Eigen::Vector3f, 4>& points,
               const std::array<Eigen::Vector3f, 4>& normals, Rng& rng,
-              std::vector<CongruentSet>& out) const;
+              std::vector<CongruentSet>& out, Workspace& workspace) const;
+  size_t find(const std::array<Eigen::Vector3f, 4>& points,
+              const std::array<Eigen::Vector3f, 4>& normals, Rng& rng,
+              std::vector<CongruentSet>& out) const {
+    Workspace workspace;
+    return find(points, normals, rng, out, workspace);
+  }
 
  private:
   const PreparedModel& model_;

@@ -1,58 +1,73 @@
 #pragma once
-// Fixed-radius neighbour queries on a static point set through a hashed uniform grid. Queries with
-// a radius up to the cell size touch 27 cells, cost O(1) per query and allocate nothing, which is
-// what the verification inner loop needs; a kd-tree would pay a log factor and pointer chasing
-// instead.
+// Fixed-radius neighbour queries on a static point set through a uniform grid over the points'
+// bounding box. Cells are indexed densely (x fastest) and the points sorted by cell, so the cells
+// of one x-row of a query's neighbourhood hold one contiguous run of points: a query with a radius
+// up to the cell size scans 9 runs, with no hashing and no allocation. Building is a counting sort
+// (two passes, no hashing), cheap enough to rebuild for every base of the congruent-set search;
+// `assign` reuses the buffers. A kd-tree would pay a log factor and pointer chasing instead.
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-
-#include "stocs/cell_table.h"
-#include "stocs/voxel_key.h"
 
 namespace stocs {
 
 class PointGrid {
  public:
   PointGrid() = default;
-  PointGrid(const std::vector<Eigen::Vector3f>& points, float cell_size);
+  /// Throws std::invalid_argument when cell_size is not positive or a point is not finite.
+  PointGrid(const std::vector<Eigen::Vector3f>& points, float cell_size) {
+    assign(points, cell_size);
+  }
+
+  /// Rebuilds the grid over `points` with cells of at least `cell_size` (larger when the bounding
+  /// box would need more than a few cells per point), keeping the allocated buffers.
+  void assign(const std::vector<Eigen::Vector3f>& points, float cell_size);
 
   bool empty() const { return points_.empty(); }
   float cellSize() const { return cell_size_; }
 
   /// Index (into the constructor's vector) of the point closest to q among those strictly within
-  /// `radius`, or -1. Ties go to the lower index, so results never depend on the table layout.
+  /// `radius`, or -1. Ties go to the lower index, so results never depend on the cell layout.
   int closestWithin(const Eigen::Vector3f& q, float radius, float* distance_sq = nullptr) const;
 
-  /// Calls visit(index, distance_sq) for every point strictly within `radius` of q.
+  /// Calls visit(index, distance_sq) for every point strictly within `radius` of q (q may lie
+  /// anywhere, also outside the points' bounding box).
   template <class Visit>
   void forEachWithin(const Eigen::Vector3f& q, float radius, Visit&& visit) const {
+    if (points_.empty()) return;
     const float r2 = radius * radius;
-    const int reach = static_cast<int>(std::ceil(radius * inv_cell_));
-    const Eigen::Vector3i c = cellOf(q);
-    for (int dx = -reach; dx <= reach; ++dx) {
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dz = -reach; dz <= reach; ++dz) {
-          const CellTable::Range* s = table_.find(packVoxelCell(c + Eigen::Vector3i(dx, dy, dz)));
-          if (!s) continue;
-          for (uint32_t k = s->begin; k < s->end; ++k) {
-            const float d2 = (points_[k] - q).squaredNorm();
-            if (d2 < r2) visit(static_cast<int>(index_[k]), d2);
-          }
+    const float reach = std::ceil(radius * inv_cell_);
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      // In floats first: a query far outside the box must not overflow an int.
+      const float c = std::floor((q[a] - origin_[a]) * inv_cell_);
+      const float first = std::max(c - reach, 0.0f), last = std::min(c + reach, dims_[a] - 1.0f);
+      if (!(first <= last)) return;
+      lo[a] = static_cast<int>(first);
+      hi[a] = static_cast<int>(last);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z) {
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        const size_t row = (static_cast<size_t>(z) * dims_[1] + y) * dims_[0];
+        for (uint32_t k = start_[row + lo[0]], end = start_[row + hi[0] + 1]; k < end; ++k) {
+          const float d2 = (points_[k] - q).squaredNorm();
+          if (d2 < r2) visit(static_cast<int>(index_[k]), d2);
         }
       }
     }
   }
 
  private:
-  Eigen::Vector3i cellOf(const Eigen::Vector3f& p) const { return voxelCell(p, inv_cell_); }
-
   float cell_size_ = 0, inv_cell_ = 0;
-  std::vector<Eigen::Vector3f> points_;  // grouped by cell for locality
-  std::vector<uint32_t> index_;          // original index of points_[k]
-  CellTable table_;                      // cell -> range of points_
+  Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();  // minimum corner of the bounding box
+  int dims_[3] = {0, 0, 0};                           // cells per axis
+  std::vector<Eigen::Vector3f> points_;               // sorted by cell
+  std::vector<uint32_t> index_;                       // original index of points_[k]
+  std::vector<uint32_t> start_;  // points of cell c: points_[start_[c] .. start_[c + 1])
+  std::vector<uint32_t> cell_;   // cell of each input point, kept between the two passes
 };
 
 }  // namespace stocs

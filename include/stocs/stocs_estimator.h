@@ -34,6 +34,12 @@ struct StocsParams {
   /// cannot score, and on the dove they are 47% of all fits. One agreeing point suffices to keep
   /// every fit that is not turned over.
   int min_normal_agreement = 1;
+  /// Of a base's hypotheses, only this many, those with the best objective over the first
+  /// LcpParams::coarse_fraction of the model (their head, an unbiased subsample), are scored in
+  /// full; the base's best is the best of them. Planar and symmetric bases give dozens of
+  /// near-equal sliding fits, which otherwise survive the coarse checks for most of the model.
+  /// Accuracy before and after: BENCHMARKS.md.
+  int finished_per_base = 4;
   LcpParams lcp;
   IcpParams icp;
   FreeSpaceParams free_space;
@@ -83,6 +89,7 @@ struct PoseEstimate {
   long hypotheses = 0;         ///< rigid fits that passed the RMS check and were scored
   long duplicates = 0;         ///< rigid fits skipped as near-duplicates of a scored one
   long normal_mismatches = 0;  ///< rigid fits skipped by StocsParams::min_normal_agreement
+  long finished = 0;  ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
   StageSeconds stages;
   double seconds = 0;  ///< wall time of estimate()
 };

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "stocs/error.h"
-#include "stocs/point_grid.h"
 
 namespace stocs {
 namespace {
@@ -33,11 +32,6 @@ LinePair closestPoints(const std::array<Eigen::Vector3f, 4>& p, int a, int b, in
   return lp;
 }
 
-struct PairPoint {
-  uint16_t i, j;
-  Eigen::Vector3f e;
-};
-
 }  // namespace
 
 void CongruentSetParams::validate() const {
@@ -63,7 +57,7 @@ CongruentSetMatcher::CongruentSetMatcher(const PreparedModel& model,
 
 size_t CongruentSetMatcher::find(const std::array<Eigen::Vector3f, 4>& points,
                                  const std::array<Eigen::Vector3f, 4>& normals, Rng& rng,
-                                 std::vector<CongruentSet>& out) const {
+                                 std::vector<CongruentSet>& out, Workspace& workspace) const {
   out.clear();
   // The split of the base into two pairs whose lines cross best: inside both segments if possible,
   // then at the widest angle.
@@ -78,15 +72,18 @@ size_t CongruentSetMatcher::find(const std::array<Eigen::Vector3f, 4>& points,
   const LinePair& lp = *best;
 
   const auto& mp = model_.model.points;
-  std::vector<PairPoint> first, second;
+  std::vector<ModelPair>& first = workspace.first;
+  std::vector<ModelPair>& second = workspace.second;
+  first.clear();
+  second.clear();
   model_.ppf_map.forEachMatch(points[lp.a], normals[lp.a], points[lp.b], normals[lp.b],
                               [&](uint16_t i, uint16_t j) {
-                                first.push_back({i, j, mp[i] + lp.t * (mp[j] - mp[i])});
+                                first.push_back({i, j});
                               });
   if (first.empty()) return 0;
   model_.ppf_map.forEachMatch(points[lp.c], normals[lp.c], points[lp.d], normals[lp.d],
                               [&](uint16_t k, uint16_t l) {
-                                second.push_back({k, l, mp[k] + lp.u * (mp[l] - mp[k])});
+                                second.push_back({k, l});
                               });
   if (second.empty()) return 0;
 
@@ -100,34 +97,39 @@ size_t CongruentSetMatcher::find(const std::array<Eigen::Vector3f, 4>& points,
     return std::abs((mp[mx] - mp[my]).norm() - base_dist[x][y]) <= tol;
   };
 
-  std::vector<Eigen::Vector3f> second_points;
-  second_points.reserve(second.size());
-  for (const PairPoint& p : second) second_points.push_back(p.e);
-  const float radius = lp.gap + tol;
-  const PointGrid grid(second_points, radius);
-  // First pairs are visited in a seeded random order and the search stops at the cap: the sets kept
-  // are a random sample without enumerating every set of a very ambiguous (e.g. planar) base.
-  for (size_t k = first.size(); k > 1; --k) {
-    std::swap(first[k - 1], first[uniformIndex(rng, static_cast<uint32_t>(k))]);
+  workspace.meeting.clear();
+  for (const ModelPair& p : second) {
+    workspace.meeting.push_back(mp[p.first] + lp.u * (mp[p.second] - mp[p.first]));
   }
+  const float radius = lp.gap + tol;
+  workspace.grid.assign(workspace.meeting, radius);
+  // First pairs are visited in a seeded random order (a Fisher-Yates shuffle drawn lazily, from
+  // the back, as far as the visit goes) and the search stops at the cap: the sets kept are a random
+  // sample without enumerating, or even shuffling, every pair of a very ambiguous (e.g. planar)
+  // base, which typically fills the cap from a few dozen of its thousands of first pairs.
   const size_t cap = static_cast<size_t>(params_.max_sets);
-  for (const PairPoint& f : first) {
-    if (out.size() >= cap) break;
-    if (!agrees(lp.a, lp.b, f.i, f.j)) continue;
-    grid.forEachWithin(f.e, radius, [&](int s_index, float) {
-      const PairPoint& s = second[s_index];
+  for (size_t k = first.size(); k > 0 && out.size() < cap; --k) {
+    std::swap(first[k - 1], first[uniformIndex(rng, static_cast<uint32_t>(k))]);
+    const ModelPair f = first[k - 1];
+    if (!agrees(lp.a, lp.b, f.first, f.second)) continue;
+    const Eigen::Vector3f meeting = mp[f.first] + lp.t * (mp[f.second] - mp[f.first]);
+    workspace.grid.forEachWithin(meeting, radius, [&](int s_index, float) {
+      const ModelPair& s = second[s_index];
       if (out.size() >= cap) return;
-      if (s.i == f.i || s.i == f.j || s.j == f.i || s.j == f.j) return;
-      if (!agrees(lp.c, lp.d, s.i, s.j) || !agrees(lp.a, lp.c, f.i, s.i) ||
-          !agrees(lp.a, lp.d, f.i, s.j) || !agrees(lp.b, lp.c, f.j, s.i) ||
-          !agrees(lp.b, lp.d, f.j, s.j)) {
+      if (s.first == f.first || s.first == f.second || s.second == f.first ||
+          s.second == f.second) {
+        return;
+      }
+      if (!agrees(lp.c, lp.d, s.first, s.second) || !agrees(lp.a, lp.c, f.first, s.first) ||
+          !agrees(lp.a, lp.d, f.first, s.second) || !agrees(lp.b, lp.c, f.second, s.first) ||
+          !agrees(lp.b, lp.d, f.second, s.second)) {
         return;
       }
       CongruentSet set;
-      set[lp.a] = f.i;
-      set[lp.b] = f.j;
-      set[lp.c] = s.i;
-      set[lp.d] = s.j;
+      set[lp.a] = f.first;
+      set[lp.b] = f.second;
+      set[lp.c] = s.first;
+      set[lp.d] = s.second;
       out.push_back(set);
     });
   }

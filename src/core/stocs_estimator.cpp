@@ -27,7 +27,7 @@ double secondsSince(Clock::time_point t) {
 struct BaseOutcome {
   bool tried = false, sampled = false;
   int sets = 0;
-  long hypotheses = 0, duplicates = 0, normal_mismatches = 0;
+  long hypotheses = 0, duplicates = 0, normal_mismatches = 0, finished = 0;
   float score = -std::numeric_limits<float>::infinity();
   int region = -1;  // instance region of the base, -1 without regions
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
@@ -133,6 +133,10 @@ void StocsParams::validate() const {
     throw InputError(
         fmt::format("minimum normal agreement {} is outside [0, 4]", min_normal_agreement));
   }
+  if (finished_per_base < 1 || finished_per_base > 100000) {
+    throw InputError(
+        fmt::format("hypotheses finished per base {} is outside [1, 100000]", finished_per_base));
+  }
   if (bases < 1 || bases > 1000000)
     throw InputError(fmt::format("bases {} is outside [1, 1000000]", bases));
   if (!(time_budget >= 0) || time_budget > 3600) {
@@ -200,6 +204,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   const size_t refined_bases =
       params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
   const size_t keep = params_.instances > 1 ? static_cast<size_t>(params_.bases) : refined_bases;
+  const auto finished = static_cast<size_t>(params_.finished_per_base);
 #pragma omp parallel num_threads(threads)
   {
     // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
@@ -207,6 +212,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<float> thread_top;
     std::vector<std::pair<int, float>> scratch;
     std::vector<CongruentSet> sets;
+    CongruentSetMatcher::Workspace matching;
     std::vector<PlacedPose> scored;   // hypotheses of the current base
     std::vector<PartialScore> heads;  // their objectives over the first model points
     std::vector<uint32_t> order;      // the order in which they are finished
@@ -230,7 +236,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
         bn[k] = segment.normals[(*base)[k]];
       }
       t = Clock::now();
-      matcher_.find(bp, bn, rng, sets);
+      matcher_.find(bp, bn, rng, sets, matching);
       out.stages.matching = secondsSince(t);
       out.sets = static_cast<int>(sets.size());
 
@@ -255,13 +261,19 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
         heads.push_back(scorer.scoreHead(model, *pose, out.region));
       }
       out.hypotheses = static_cast<long>(scored.size());
-      // Finish the hypotheses most promising by their head first: the base's best is then found
-      // early, and the coarse checks and the exact bound drop most others right after their head.
-      // Every head covers the same model points, so their objectives compare directly.
+      // Finish the hypotheses most promising by their head, best first: the base's best is then
+      // found early, and the coarse checks and the exact bound drop most others right after their
+      // head. Every head covers the same model points, so their objectives compare directly.
       order.resize(scored.size());
       std::iota(order.begin(), order.end(), 0u);
-      std::stable_sort(order.begin(), order.end(),
-                       [&](uint32_t a, uint32_t b) { return heads[a].total > heads[b].total; });
+      const size_t finishing = std::min(order.size(), finished);
+      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(finishing),
+                        order.end(), [&](uint32_t a, uint32_t b) {
+                          return heads[a].total > heads[b].total ||
+                                 (heads[a].total == heads[b].total && a < b);
+                        });
+      order.resize(finishing);
+      out.finished = static_cast<long>(finishing);
       for (uint32_t h : order) {
         const float kth =
             thread_top.size() < keep ? -std::numeric_limits<float>::infinity() : thread_top.front();
@@ -290,6 +302,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.hypotheses += out.hypotheses;
     result.duplicates += out.duplicates;
     result.normal_mismatches += out.normal_mismatches;
+    result.finished += out.finished;
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;

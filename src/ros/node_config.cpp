@@ -290,6 +290,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   stocs.get("max_fit_rms", p.stocs.max_fit_rms);
   stocs.get("duplicate_distance", p.stocs.duplicate_distance);
   stocs.get("min_normal_agreement", p.stocs.min_normal_agreement);
+  stocs.get("finished_per_base", p.stocs.finished_per_base);
   MapReader lcp = stocs.map("lcp");
   lcp.get("distance", p.stocs.lcp.distance);
   lcp.get("normal_angle_deg", p.stocs.lcp.normal_angle_deg);

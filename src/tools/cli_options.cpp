@@ -53,6 +53,9 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
                  "Base points (0-4) whose normal must agree with the model's within delta_n for "
                  "a fit to be scored")
       ->group(stocs);
+  cmd.add_option("--finished-per-base", p.stocs.finished_per_base,
+                 "Hypotheses of a base scored in full: those best on the first share of the model")
+      ->group(stocs);
   cmd.add_option("--delta-s", p.stocs.lcp.distance, "delta_s: LCP distance threshold, m")
       ->group(stocs);
   cmd.add_option("--delta-n", p.stocs.lcp.normal_angle_deg, "delta_n: LCP normal angle, degrees")

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 
 #include "stocs/neighbourhood_grid.h"
 
@@ -35,6 +36,44 @@ TEST(NeighbourhoodGrid, EveryPointWithinTheRadiusIsVisited) {
   grid.forEachWithin({0.002f, 0, 0}, [&](int i, float) { seen.push_back(i); });
   std::sort(seen.begin(), seen.end());
   EXPECT_EQ(seen, (std::vector<int>{0, 1, 2}));  // 4 is 5.8 mm away
+}
+
+TEST(NeighbourhoodGrid, MatchesBruteForceOnASurfaceAndFarAway) {
+  // Points on a wavy sheet as on a depth surface, queries on and off it (also outside the grid).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.1f, 0.1f);
+  std::vector<Eigen::Vector3f> points(3000);
+  for (Eigen::Vector3f& p : points) {
+    p.x() = u(rng);
+    p.y() = u(rng);
+    p.z() = 0.01f * std::sin(30 * p.x()) + 0.002f * u(rng);
+  }
+  const float radius = 0.005f;
+  const NeighbourhoodGrid grid(points, radius);
+  for (int q = 0; q < 2000; ++q) {
+    const Eigen::Vector3f query(1.2f * u(rng), 1.2f * u(rng), 0.15f * u(rng));
+    int expected = -1;
+    float best = radius * radius;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const float d2 = (points[i] - query).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        expected = static_cast<int>(i);
+      }
+    }
+    ASSERT_EQ(grid.closest(query), expected) << query.transpose();
+  }
+}
+
+TEST(NeighbourhoodGrid, ASparseWideSetStaysExact) {
+  // Two points 100 m apart: half-radius cells over their box would be 1e14 cells.
+  const std::vector<Eigen::Vector3f> points = {{0, 0, 0}, {100, 100, 100}};
+  const NeighbourhoodGrid grid(points, 0.005f);
+  EXPECT_EQ(grid.closest({0.001f, 0.001f, 0.001f}), 0);
+  EXPECT_EQ(grid.closest({100, 100, 100.004f}), 1);
+  EXPECT_EQ(grid.closest({50, 50, 50}), -1);
+  EXPECT_EQ(grid.closest({NAN, 0, 0}), -1);
+  EXPECT_THROW(NeighbourhoodGrid({{0, 0, 0}, {0, NAN, 0}}, 0.005f), std::invalid_argument);
 }
 
 }  // namespace

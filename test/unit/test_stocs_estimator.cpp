@@ -93,6 +93,22 @@ TEST_F(StocsEstimatorTest, FitsThatTurnTheModelOverAreNotScored) {
   EXPECT_LT(addsOf(agreeing.estimate), 0.05 * model_.model.diameter);
 }
 
+TEST_F(StocsEstimatorTest, OnlyTheBestHeadsOfABaseAreFinished) {
+  PipelineParams params;
+  params.stocs.seed = 5;
+  params.stocs.finished_per_base = 100000;
+  const ObjectEstimate every =
+      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  params.stocs.finished_per_base = 2;
+  const ObjectEstimate best_two =
+      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  EXPECT_EQ(every.estimate.finished, every.estimate.hypotheses);
+  EXPECT_LE(best_two.estimate.finished, 2L * best_two.estimate.bases_with_sets);
+  EXPECT_LT(best_two.estimate.finished, every.estimate.finished);
+  ASSERT_TRUE(best_two.estimate.found);
+  EXPECT_LT(addsOf(best_two.estimate), 0.05 * model_.model.diameter);
+}
+
 TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
   PipelineParams params;
   params.stocs.seed = 42;
@@ -204,6 +220,9 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.min_normal_agreement = 5;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.finished_per_base = 0;
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.instance_separation = 0;
