@@ -63,6 +63,10 @@ class LcpScorer {
   /// finishScore(scoreHead(x)) is score(x) with the same must_reach.
   PartialScore scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
                          int region = -1) const;
+  /// Continues `partial` without early stop up to `share` (0 to 1) of the head, in whole chunks:
+  /// a cheaper first ranking of many hypotheses. scoreHead(x) is extendHead(x, {}, 1).
+  void extendHead(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                  PartialScore& partial, float share) const;
   float finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                     PartialScore head,
                     float must_reach = -std::numeric_limits<float>::infinity()) const;

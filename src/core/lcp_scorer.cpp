@@ -119,9 +119,16 @@ float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, 
 PartialScore LcpScorer::scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                   int region) const {
   PartialScore head;
-  advance(model, pose, region, head, headSize(model.size()),
-          -std::numeric_limits<float>::infinity());
+  extendHead(model, pose, region, head, 1.0f);
   return head;
+}
+
+void LcpScorer::extendHead(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                           PartialScore& partial, float share) const {
+  const uint32_t head = headSize(model.size());
+  const auto chunks = static_cast<uint32_t>(std::ceil(share * static_cast<float>(head) / kChunk));
+  advance(model, pose, region, partial, std::min(head, chunks * kChunk),
+          -std::numeric_limits<float>::infinity());
 }
 
 float LcpScorer::finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,

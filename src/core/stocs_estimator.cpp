@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -18,6 +19,11 @@ namespace stocs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// Hypotheses of a base carried from the first half of the head to the second, per hypothesis
+/// finished: the first half (often some 20 scene lookups) only has to keep the best few in, and
+/// on planar bases it drops about three quarters of the hypotheses.
+constexpr size_t kHeadRoundWidth = 4;
 
 double secondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -74,18 +80,16 @@ Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefine
 /// taken is skipped, and the others are refined when taken.
 std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           size_t refined_bases, size_t count,
-                                          const ObjectModel& model, const SoftSegment& segment,
-                                          const LcpScorer& scorer, const StocsParams& params,
+                                          const ObjectModel& model, const LcpScorer& scorer,
+                                          const IcpRefiner* icp, const StocsParams& params,
                                           const FreeSpaceCheck* free_space, int threads) {
   const size_t first = std::min(refined_bases, ranked.size());
-  std::optional<IcpRefiner> icp;
-  if (params.icp.enabled) icp.emplace(segment, params.icp);
   // The candidates are refined in parallel: each refinement is independent and reads only shared
   // const state.
   std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 0; k < first; ++k) {
-    pool[k] = refine(ranked[k], model, icp ? &*icp : nullptr, scorer, free_space);
+    pool[k] = refine(ranked[k], model, icp, scorer, free_space);
   }
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
@@ -101,7 +105,7 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     if (taken.size() == count) break;
     if (!taken.empty() && !isNew(h)) continue;
     if (!h.polished) {
-      h = refine(h, model, icp ? &*icp : nullptr, scorer, free_space);
+      h = refine(h, model, icp, scorer, free_space);
       if (!taken.empty() && !isNew(h)) continue;  // refinement moved it onto a taken instance
     }
     taken.push_back(h);
@@ -112,6 +116,38 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     instances.push_back({h.pose, scorer.detail(model, h.pose, h.region), h.refined, h.region});
   }
   return instances;
+}
+
+/// The scorer and the ICP refiner of a segment. Each builds a neighbourhood grid over the segment
+/// (milliseconds on large segments, before any base can be verified), and they are independent, so
+/// they are built side by side.
+struct SegmentIndexes {
+  std::optional<LcpScorer> scorer;
+  std::optional<IcpRefiner> icp;  // empty when ICP is off
+};
+
+SegmentIndexes buildIndexes(const SoftSegment& segment, const StocsParams& params, int threads) {
+  SegmentIndexes out;
+  std::exception_ptr error;  // an exception must not leave an OpenMP region
+  auto guarded = [&](auto&& build) {
+    try {
+      build();
+    } catch (...) {
+#pragma omp critical(stocs_build_indexes)
+      error = std::current_exception();
+    }
+  };
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+  {
+#pragma omp section
+    guarded([&] { out.scorer.emplace(segment, params.lcp); });
+#pragma omp section
+    guarded([&] {
+      if (params.icp.enabled) out.icp.emplace(segment, params.icp);
+    });
+  }
+  if (error) std::rethrow_exception(error);
+  return out;
 }
 
 }  // namespace
@@ -188,8 +224,10 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.seconds = secondsSince(start);
     return result;
   }
+  const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
   const BaseSampler sampler(segment, model_.ppf_map, params_.base);
-  const LcpScorer scorer(segment, params_.lcp);
+  const SegmentIndexes indexes = buildIndexes(segment, params_, threads);
+  const LcpScorer& scorer = *indexes.scorer;
   const ObjectModel& model = model_.model;
   const bool budgeted = params_.time_budget > 0;
   const Clock::time_point deadline =
@@ -197,7 +235,6 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
                   std::chrono::duration<double>(params_.time_budget));
 
   std::vector<BaseOutcome> outcomes(params_.bases);
-  const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
   // The K best bases go on to refinement, so a hypothesis matters when it can still beat its own
   // base's best and the K-th best base score seen so far. Several instances need every base's
   // best, as the next instance may come from any base.
@@ -258,21 +295,30 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
           continue;
         }
         scored.push_back(placed);
-        heads.push_back(scorer.scoreHead(model, *pose, out.region));
       }
       out.hypotheses = static_cast<long>(scored.size());
-      // Finish the hypotheses most promising by their head, best first: the base's best is then
-      // found early, and the coarse checks and the exact bound drop most others right after their
-      // head. Every head covers the same model points, so their objectives compare directly.
+      // Heads in two rounds: every hypothesis on the first half of the head, the most promising
+      // kHeadRoundWidth x finished_per_base of them on the rest. Then the best heads are finished,
+      // best first: the base's best is found early, and the coarse checks and the exact bound drop
+      // the others soon after their head. Every (partial) head covers the same model points, so
+      // their objectives compare directly.
+      heads.assign(scored.size(), PartialScore{});
       order.resize(scored.size());
       std::iota(order.begin(), order.end(), 0u);
-      const size_t finishing = std::min(order.size(), finished);
-      std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(finishing),
-                        order.end(), [&](uint32_t a, uint32_t b) {
-                          return heads[a].total > heads[b].total ||
-                                 (heads[a].total == heads[b].total && a < b);
-                        });
-      order.resize(finishing);
+      auto keepBest = [&](size_t n) {
+        n = std::min(n, order.size());
+        std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(n),
+                          order.end(), [&](uint32_t a, uint32_t b) {
+                            return heads[a].total > heads[b].total ||
+                                   (heads[a].total == heads[b].total && a < b);
+                          });
+        order.resize(n);
+      };
+      for (uint32_t h : order) scorer.extendHead(model, scored[h].pose, out.region, heads[h], 0.5f);
+      keepBest(kHeadRoundWidth * finished);
+      for (uint32_t h : order) scorer.extendHead(model, scored[h].pose, out.region, heads[h], 1.0f);
+      keepBest(finished);
+      const size_t finishing = order.size();
       out.finished = static_cast<long>(finishing);
       for (uint32_t h : order) {
         const float kth =
@@ -315,8 +361,9 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     return result;
   }
   const Clock::time_point t = Clock::now();
-  result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
-                                     model, segment, scorer, params_, free_space, threads);
+  result.instances =
+      selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances), model, scorer,
+                      indexes.icp ? &*indexes.icp : nullptr, params_, free_space, threads);
   if (params_.icp.enabled) result.stages.refinement = secondsSince(t);
   result.found = true;
   const InstancePose& best = result.instances.front();

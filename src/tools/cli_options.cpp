@@ -60,6 +60,14 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(stocs);
   cmd.add_option("--delta-n", p.stocs.lcp.normal_angle_deg, "delta_n: LCP normal angle, degrees")
       ->group(stocs);
+  cmd.add_option("--coarse-fraction", p.stocs.lcp.coarse_fraction,
+                 "Share of the model scored first (the head), and again between coarse checks; "
+                 "0: no coarse checks")
+      ->group(stocs);
+  cmd.add_option("--coarse-ratio", p.stocs.lcp.coarse_ratio,
+                 "At the first coarse check, a hypothesis extrapolated below this share of the "
+                 "score to beat is dropped")
+      ->group(stocs);
   cmd.add_option("--instances", p.stocs.instances,
                  "Distinct poses per object (several instances of one object in a bin)")
       ->group(stocs);
