@@ -45,9 +45,10 @@ struct SoftSegment {
 /// Builds the soft segment from an organized cloud and a CV_32FC1 probability image of the same
 /// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods. Pixels without depth
 /// or without a normal are left out; the result may be empty. Throws InputError on a size or type
-/// mismatch.
+/// mismatch. The normals, independent per point, are estimated on `threads` threads; the result
+/// does not depend on it.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
-                             float focal_px, const SoftSegmentParams& params);
+                             float focal_px, const SoftSegmentParams& params, int threads = 1);
 
 /// Splits the segment into instance regions with a boundary map (CV_8UC1, same size as the image;
 /// values >= 128 are object interior, lower values are boundaries, as in the StoCS `edge.png` and

@@ -1,5 +1,7 @@
 #include "stocs/pipeline.h"
 
+#include <omp.h>
+
 #include <chrono>
 #include <optional>
 
@@ -18,7 +20,8 @@ ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
                               const cv::Mat& probability, const PreparedModel& model,
                               const PipelineParams& params, const cv::Mat* boundary_map) {
   const auto start = std::chrono::steady_clock::now();
-  SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment);
+  const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
+  SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   ObjectEstimate result;
   result.segment_points = segment.size();

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
@@ -39,7 +40,7 @@ void SoftSegmentParams::validate() const {
 }
 
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
-                             float focal_px, const SoftSegmentParams& params) {
+                             float focal_px, const SoftSegmentParams& params, int threads) {
   params.validate();
   if (probability.type() != CV_32FC1) {
     throw InputError("probability image must be CV_32FC1 (use toProbabilityImage)");
@@ -90,11 +91,17 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
     }
   }
 
+  std::vector<Eigen::Vector3f> normals(groups.size());
+  const auto group_count = static_cast<std::ptrdiff_t>(groups.size());
+#pragma omp parallel for num_threads(std::max(1, threads)) schedule(static)
+  for (std::ptrdiff_t g = 0; g < group_count; ++g) {
+    normals[g] = organizedNormal(cloud, representative[g], focal_px, params.normals);
+  }
+
   SoftSegment segment;
   double total = 0;
   for (size_t g = 0; g < groups.size(); ++g) {  // groups are in order of first pixel: deterministic
-    const Eigen::Vector3f normal =
-        organizedNormal(cloud, representative[g], focal_px, params.normals);
+    const Eigen::Vector3f& normal = normals[g];
     if (!normal.allFinite()) continue;
     const Voxel& vox = groups[g];
     segment.points.push_back(vox.sum / static_cast<float>(vox.count));

@@ -116,6 +116,18 @@ TEST_F(SoftSegmentTest, KeepsPixelsAboveEpsilonWithNormalisedProbabilities) {
   }
 }
 
+TEST_F(SoftSegmentTest, ThreadsDoNotChangeTheSegment) {
+  SoftSegmentParams params;
+  params.voxel_size = 0.01f;
+  const SoftSegment one = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params, 1);
+  const SoftSegment three = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params, 3);
+  ASSERT_GT(one.size(), 100u);
+  EXPECT_EQ(one.pixel, three.pixel);
+  EXPECT_EQ(one.points, three.points);
+  EXPECT_EQ(one.normals, three.normals);
+  EXPECT_EQ(one.probability, three.probability);
+}
+
 TEST_F(SoftSegmentTest, VoxelsAverageTheirPixels) {
   prob_(cv::Rect(50, 0, 50, 40)) = 0.4;
   SoftSegmentParams params;
