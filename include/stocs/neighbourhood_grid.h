@@ -10,6 +10,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "stocs/dense_cells.h"
+
 namespace stocs {
 
 class NeighbourhoodGrid {
@@ -25,15 +27,14 @@ class NeighbourhoodGrid {
   /// Calls visit(index, distance_sq) for every point strictly within the radius of q.
   template <class Visit>
   void forEachWithin(const Eigen::Vector3f& q, Visit&& visit) const {
-    const Eigen::Vector3f c = (q - origin_) * inv_cell_;
+    const Eigen::Vector3f c = (q - cells_.origin) * cells_.inv_size;
     // Negated comparisons also turn away NaN; the casts below are then within the grid.
     if (!(c.x() >= 0 && c.y() >= 0 && c.z() >= 0 && c.x() < dims_f_.x() && c.y() < dims_f_.y() &&
           c.z() < dims_f_.z())) {
       return;
     }
-    const size_t cell =
-        (static_cast<size_t>(c.z()) * dims_[1] + static_cast<size_t>(c.y())) * dims_[0] +
-        static_cast<size_t>(c.x());
+    const size_t cell = cells_.index(static_cast<size_t>(c.x()), static_cast<size_t>(c.y()),
+                                     static_cast<size_t>(c.z()));
     for (uint32_t k = start_[cell], end = start_[cell + 1]; k < end; ++k) {
       const uint32_t j = lists_[k];
       const float d2 = (points_[j] - q).squaredNorm();
@@ -61,11 +62,10 @@ class NeighbourhoodGrid {
   }
 
  private:
-  float radius_ = 0, radius2_ = 0, inv_cell_ = 0;
-  Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();  // minimum corner of the grid
+  float radius_ = 0, radius2_ = 0;
+  DenseCells cells_;  // over the points' bounding box grown by the radius
   Eigen::Vector3f dims_f_ =
-      Eigen::Vector3f::Zero();  // cells per axis, as floats for the bounds test
-  size_t dims_[3] = {0, 0, 0};
+      Eigen::Vector3f::Zero();  // cells_.dims as floats, for the bounds test of every query
   std::vector<Eigen::Vector3f> points_;  // the subset's points
   std::vector<uint32_t> original_;       // index of points_[j] in the constructor's vector
   std::vector<uint32_t> start_;          // list of cell c: lists_[start_[c] .. start_[c + 1])

@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "stocs/dense_cells.h"
+
 namespace stocs {
 
 class PointGrid {
@@ -27,7 +29,7 @@ class PointGrid {
   void assign(const std::vector<Eigen::Vector3f>& points, float cell_size);
 
   bool empty() const { return points_.empty(); }
-  float cellSize() const { return cell_size_; }
+  float cellSize() const { return cells_.size; }
 
   /// Index (into the constructor's vector) of the point closest to q among those strictly within
   /// `radius`, or -1. Ties go to the lower index, so results never depend on the cell layout.
@@ -39,20 +41,22 @@ class PointGrid {
   void forEachWithin(const Eigen::Vector3f& q, float radius, Visit&& visit) const {
     if (points_.empty()) return;
     const float r2 = radius * radius;
-    const float reach = std::ceil(radius * inv_cell_);
-    int lo[3], hi[3];
+    const float reach = std::ceil(radius * cells_.inv_size);
+    size_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      // In floats first: a query far outside the box must not overflow an int.
-      const float c = std::floor((q[a] - origin_[a]) * inv_cell_);
-      const float first = std::max(c - reach, 0.0f), last = std::min(c + reach, dims_[a] - 1.0f);
+      // In floats first: a query far outside the box must not overflow an integer.
+      const float c = std::floor((q[a] - cells_.origin[a]) * cells_.inv_size);
+      const float first = std::max(c - reach, 0.0f);
+      const float last = std::min(c + reach, static_cast<float>(cells_.dims[a]) - 1.0f);
       if (!(first <= last)) return;
-      lo[a] = static_cast<int>(first);
-      hi[a] = static_cast<int>(last);
+      lo[a] = static_cast<size_t>(first);
+      hi[a] = static_cast<size_t>(last);
     }
-    for (int z = lo[2]; z <= hi[2]; ++z) {
-      for (int y = lo[1]; y <= hi[1]; ++y) {
-        const size_t row = (static_cast<size_t>(z) * dims_[1] + y) * dims_[0];
-        for (uint32_t k = start_[row + lo[0]], end = start_[row + hi[0] + 1]; k < end; ++k) {
+    for (size_t z = lo[2]; z <= hi[2]; ++z) {
+      for (size_t y = lo[1]; y <= hi[1]; ++y) {
+        for (uint32_t k = start_[cells_.index(lo[0], y, z)],
+                      end = start_[cells_.index(hi[0], y, z) + 1];
+             k < end; ++k) {
           const float d2 = (points_[k] - q).squaredNorm();
           if (d2 < r2) visit(static_cast<int>(index_[k]), d2);
         }
@@ -61,13 +65,10 @@ class PointGrid {
   }
 
  private:
-  float cell_size_ = 0, inv_cell_ = 0;
-  Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();  // minimum corner of the bounding box
-  int dims_[3] = {0, 0, 0};                           // cells per axis
-  std::vector<Eigen::Vector3f> points_;               // sorted by cell
-  std::vector<uint32_t> index_;                       // original index of points_[k]
-  std::vector<uint32_t> start_;  // points of cell c: points_[start_[c] .. start_[c + 1])
-  std::vector<uint32_t> cell_;   // cell of each input point, kept between the two passes
+  DenseCells cells_;                     // over the points' bounding box
+  std::vector<Eigen::Vector3f> points_;  // sorted by cell
+  std::vector<uint32_t> index_;          // original index of points_[k]
+  std::vector<uint32_t> start_;          // points of cell c: points_[start_[c] .. start_[c + 1])
 };
 
 }  // namespace stocs

@@ -5,8 +5,7 @@
 namespace stocs {
 namespace {
 
-/// Cells allowed per point before the cells grow: a sparse cloud spread over a wide box must not
-/// allocate a huge index.
+/// Cells allowed per point before the cells grow (DenseCells::cover).
 constexpr size_t kCellsPerPoint = 8;
 
 }  // namespace
@@ -16,8 +15,8 @@ void PointGrid::assign(const std::vector<Eigen::Vector3f>& points, float cell_si
   points_.clear();
   index_.clear();
   if (points.empty()) {
-    cell_size_ = cell_size;
-    inv_cell_ = 1.0f / cell_size;
+    cells_ = DenseCells{};
+    cells_.size = cell_size;
     return;
   }
   Eigen::Vector3f lo = points.front(), hi = points.front();
@@ -27,49 +26,21 @@ void PointGrid::assign(const std::vector<Eigen::Vector3f>& points, float cell_si
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
-  const Eigen::Vector3f extent = hi - lo;
-  const double max_cells =
-      static_cast<double>(std::max<size_t>(64, kCellsPerPoint * points.size()));
-  auto cellsFor = [&](float size) {
-    double cells = 1;
-    for (int a = 0; a < 3; ++a) cells *= std::floor(extent[a] / size) + 1;
-    return cells;
-  };
-  // Scale the cells up until the index is small enough (each step at least halves the count).
-  while (cellsFor(cell_size) > max_cells) {
-    cell_size *= std::max(1.26f, static_cast<float>(std::cbrt(cellsFor(cell_size) / max_cells)));
-  }
-  cell_size_ = cell_size;
-  inv_cell_ = 1.0f / cell_size;
-  origin_ = lo;
-  for (int a = 0; a < 3; ++a) dims_[a] = static_cast<int>(std::floor(extent[a] * inv_cell_)) + 1;
-
-  // Counting sort by cell: each cell keeps its points in index order.
-  const size_t cells = static_cast<size_t>(dims_[0]) * dims_[1] * dims_[2];
-  start_.assign(cells + 1, 0);
-  cell_.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    size_t c = 0;
-    for (int a = 2; a >= 0; --a) {
+  cells_ =
+      DenseCells::cover(lo, hi - lo, cell_size,
+                        static_cast<double>(std::max<size_t>(64, kCellsPerPoint * points.size())));
+  auto cellOf = [&](uint32_t i, auto&& emit) {
+    size_t c[3];
+    for (int a = 0; a < 3; ++a) {
       // The bounding box's far faces can round onto one cell past the last.
-      const int x =
-          std::min(static_cast<int>((points[i][a] - origin_[a]) * inv_cell_), dims_[a] - 1);
-      c = c * dims_[a] + static_cast<size_t>(x);
+      c[a] = std::min(static_cast<size_t>((points[i][a] - cells_.origin[a]) * cells_.inv_size),
+                      cells_.dims[a] - 1);
     }
-    cell_[i] = static_cast<uint32_t>(c);
-    ++start_[c + 1];
-  }
-  for (size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+    emit(cells_.index(c[0], c[1], c[2]));
+  };
+  sortIntoCells(cells_.count(), static_cast<uint32_t>(points.size()), cellOf, start_, index_);
   points_.resize(points.size());
-  index_.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const uint32_t k = start_[cell_[i]]++;  // start_[c] now runs as the fill cursor of cell c
-    points_[k] = points[i];
-    index_[k] = static_cast<uint32_t>(i);
-  }
-  // Each cursor ended at the next cell's start: shift back by one cell.
-  for (size_t c = cells; c > 0; --c) start_[c] = start_[c - 1];
-  start_[0] = 0;
+  for (size_t k = 0; k < index_.size(); ++k) points_[k] = points[index_[k]];
 }
 
 int PointGrid::closestWithin(const Eigen::Vector3f& q, float radius, float* distance_sq) const {
