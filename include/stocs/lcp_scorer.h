@@ -39,7 +39,7 @@ struct LcpDetail {
   float mean_confidence = 0;  ///< mean network probability of the matched segment points
 };
 
-/// The objective over the first model points of a hypothesis (LcpScorer::scoreHead), to be
+/// The objective over the first model points of a hypothesis (LcpScorer::extendHead), to be
 /// finished by LcpScorer::finishScore.
 struct PartialScore {
   float total = 0;    ///< objective over the points seen
@@ -57,14 +57,12 @@ class LcpScorer {
   float score(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1,
               float must_reach = -std::numeric_limits<float>::infinity()) const;
 
-  /// Two-step verification, to rank the hypotheses of a base before finishing any: the objective
-  /// over the first coarse_fraction of the model points (all of them when it is 0), then the rest
-  /// as score() does, with the coarse checks and the early stop against `must_reach`.
-  /// finishScore(scoreHead(x)) is score(x) with the same must_reach.
-  PartialScore scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
-                         int region = -1) const;
-  /// Continues `partial` without early stop up to `share` (0 to 1) of the head, in whole chunks:
-  /// a cheaper first ranking of many hypotheses. scoreHead(x) is extendHead(x, {}, 1).
+  /// Verification in steps, to rank the hypotheses of a base before finishing any: extendHead
+  /// continues `partial` without early stop up to `share` (0 to 1) of the head, the first
+  /// coarse_fraction of the model points (all of them when it is 0), in whole chunks; finishScore
+  /// scores the rest as score() does, with the coarse checks and the early stop against
+  /// `must_reach`. Extending an empty PartialScore to the whole head and finishing it is score()
+  /// with the same must_reach.
   void extendHead(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                   PartialScore& partial, float share) const;
   float finishScore(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,

@@ -116,13 +116,6 @@ float LcpScorer::score(const ObjectModel& model, const Eigen::Isometry3f& pose, 
   return finishScore(model, pose, region, partial, must_reach);
 }
 
-PartialScore LcpScorer::scoreHead(const ObjectModel& model, const Eigen::Isometry3f& pose,
-                                  int region) const {
-  PartialScore head;
-  extendHead(model, pose, region, head, 1.0f);
-  return head;
-}
-
 void LcpScorer::extendHead(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                            PartialScore& partial, float share) const {
   const uint32_t head = headSize(model.size());

@@ -156,7 +156,8 @@ TEST(LcpScorer, LaterCoarseChecksAllowLessMargin) {
   // A target of 2: the first eighth extrapolates to about 1.1, above half of it, so the first
   // check keeps the hypothesis; the second check (a quarter seen) allows a margin of only
   // 0.5 * sqrt(3/7) = 0.33 below the target and drops it.
-  const PartialScore head = scorer.scoreHead(patch.model, id);
+  PartialScore head;
+  scorer.extendHead(patch.model, id, -1, head, 1.0f);
   ASSERT_GT(head.total * 1600 / head.seen, 0.5f * 2.0f);
   EXPECT_LT(scorer.score(patch.model, id, -1, 2.0f), 0.0f);
   // At 7/8 seen the margin is 0.5 * sqrt(1/49) = 0.07: a target 10% above the final score drops
@@ -171,7 +172,8 @@ TEST(LcpScorer, HeadThenFinishIsTheWholeScore) {
   const HalfCoveredPatch patch;
   const LcpScorer scorer(patch.segment, LcpParams{});
   const Eigen::Isometry3f id = Eigen::Isometry3f::Identity();
-  const PartialScore head = scorer.scoreHead(patch.model, id);
+  PartialScore head;
+  scorer.extendHead(patch.model, id, -1, head, 1.0f);
   // The head is the first coarse_fraction of the model (1600 / 8 = 200) in whole chunks of 16.
   EXPECT_EQ(head.seen, 208u);
   const float full = scorer.detail(patch.model, id).score;

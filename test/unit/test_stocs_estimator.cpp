@@ -37,6 +37,11 @@ class StocsEstimatorTest : public ::testing::Test {
     model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
   }
 
+  /// The whole pipeline (soft segment, estimate) on the rendered frame.
+  ObjectEstimate estimate(const PipelineParams& params) const {
+    return estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  }
+
   SoftSegment segment(const PipelineParams& params) const {
     return buildSoftSegment(cloud_, probability_, static_cast<float>(camera_.fx), params.segment);
   }
@@ -58,8 +63,7 @@ TEST_F(StocsEstimatorTest, FindsTheRenderedPose) {
   PipelineParams params;
   for (uint64_t seed : {1u, 2u, 3u}) {
     params.stocs.seed = seed;
-    const ObjectEstimate r =
-        estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+    const ObjectEstimate r = estimate(params);
     ASSERT_TRUE(r.estimate.found) << "seed " << seed;
     EXPECT_GT(r.segment_points, 100u);
     EXPECT_LT(addsOf(r.estimate), 0.05 * model_.model.diameter) << "seed " << seed;
@@ -79,11 +83,9 @@ TEST_F(StocsEstimatorTest, FitsThatTurnTheModelOverAreNotScored) {
   PipelineParams params;
   params.stocs.seed = 5;
   params.stocs.min_normal_agreement = 0;
-  const ObjectEstimate all =
-      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  const ObjectEstimate all = estimate(params);
   params.stocs.min_normal_agreement = 1;
-  const ObjectEstimate agreeing =
-      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  const ObjectEstimate agreeing = estimate(params);
   EXPECT_EQ(all.estimate.normal_mismatches, 0);
   // The block's flat faces give fits with every normal reversed; they are skipped, and the pose
   // found is as good.
@@ -97,11 +99,9 @@ TEST_F(StocsEstimatorTest, OnlyTheBestHeadsOfABaseAreFinished) {
   PipelineParams params;
   params.stocs.seed = 5;
   params.stocs.finished_per_base = 100000;
-  const ObjectEstimate every =
-      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  const ObjectEstimate every = estimate(params);
   params.stocs.finished_per_base = 2;
-  const ObjectEstimate best_two =
-      estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+  const ObjectEstimate best_two = estimate(params);
   EXPECT_EQ(every.estimate.finished, every.estimate.hypotheses);
   EXPECT_LE(best_two.estimate.finished, 2L * best_two.estimate.bases_with_sets);
   EXPECT_LT(best_two.estimate.finished, every.estimate.finished);
