@@ -69,6 +69,7 @@ class PointGrid {
   std::vector<Eigen::Vector3f> points_;  // sorted by cell
   std::vector<uint32_t> index_;          // original index of points_[k]
   std::vector<uint32_t> start_;          // points of cell c: points_[start_[c] .. start_[c + 1])
+  std::vector<size_t> cell_;             // cell of each input point while building
 };
 
 }  // namespace stocs

@@ -29,16 +29,20 @@ void PointGrid::assign(const std::vector<Eigen::Vector3f>& points, float cell_si
   cells_ =
       DenseCells::cover(lo, hi - lo, cell_size,
                         static_cast<double>(std::max<size_t>(64, kCellsPerPoint * points.size())));
-  auto cellOf = [&](uint32_t i, auto&& emit) {
+  // Each point's cell once, for both passes of the sort (rebuilt per base: it is a hot path).
+  cell_.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
     size_t c[3];
     for (int a = 0; a < 3; ++a) {
       // The bounding box's far faces can round onto one cell past the last.
       c[a] = std::min(static_cast<size_t>((points[i][a] - cells_.origin[a]) * cells_.inv_size),
                       cells_.dims[a] - 1);
     }
-    emit(cells_.index(c[0], c[1], c[2]));
-  };
-  sortIntoCells(cells_.count(), static_cast<uint32_t>(points.size()), cellOf, start_, index_);
+    cell_[i] = cells_.index(c[0], c[1], c[2]);
+  }
+  sortIntoCells(
+      cells_.count(), static_cast<uint32_t>(points.size()),
+      [&](uint32_t i, auto&& emit) { emit(cell_[i]); }, start_, index_);
   points_.resize(points.size());
   for (size_t k = 0; k < index_.size(); ++k) points_[k] = points[index_[k]];
 }
