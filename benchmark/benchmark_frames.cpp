@@ -1,21 +1,22 @@
 #include "benchmark_frames.h"
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <string>
 
 #include "stocs/bop_dataset.h"
+#include "stocs/synthetic_dataset.h"
 
 namespace stocs::bench {
 namespace {
 
-const Frame& frame(const std::string& dataset, int scene, int image, int object) {
-  static std::map<std::string, Frame> frames;
+const Frame& frame(const std::filesystem::path& dataset, int scene, int image, int object) {
+  static std::map<std::filesystem::path, Frame> frames;
   auto it = frames.find(dataset);
   if (it != frames.end()) return it->second;
-  const char* root = std::getenv("STOCS_DATASETS");
-  if (!root) throw std::runtime_error("set STOCS_DATASETS to the folder holding " + dataset);
-  const BopDataset ds(std::filesystem::path(root) / dataset);
+  const BopDataset ds(dataset);
   Frame f;
   const cv::Mat depth = ds.loadDepth(scene, image);
   const BopFrameCamera cam = ds.sceneCameras(scene).at(image);
@@ -32,6 +33,34 @@ const Frame& frame(const std::string& dataset, int scene, int image, int object)
   return frames.emplace(dataset, std::move(f)).first->second;
 }
 
+std::filesystem::path sharedDataset(const std::string& name) {
+  const char* root = std::getenv("STOCS_DATASETS");
+  if (!root) throw std::runtime_error("set STOCS_DATASETS to the folder holding " + name);
+  return std::filesystem::path(root) / name;
+}
+
+/// The generated scene, written once per process and removed at exit.
+std::filesystem::path generatedScene() {
+  struct Scene {
+    std::filesystem::path root =
+        std::filesystem::temp_directory_path() / ("stocs_bench_scene_" + std::to_string(getpid()));
+    Scene() {
+      SyntheticDatasetParams p;
+      p.layout.objects = 3;
+      p.layout.distractors = 2;
+      p.seed = 1;
+      std::filesystem::remove_all(root);
+      writeSyntheticDataset(root, p);
+    }
+    ~Scene() {
+      std::error_code ignored;
+      std::filesystem::remove_all(root, ignored);
+    }
+  };
+  static const Scene scene;
+  return scene.root;
+}
+
 }  // namespace
 
 PipelineParams benchmarkParams() {
@@ -41,10 +70,13 @@ PipelineParams benchmarkParams() {
 }
 
 const Frame& cat() {
-  return frame("lmo-cat", 2, 3, 6);
+  return frame(sharedDataset("lmo-cat"), 2, 3, 6);
 }
 const Frame& dove() {
-  return frame("rutgers-packed", 0, 0, 1);
+  return frame(sharedDataset("rutgers-packed"), 0, 0, 1);
+}
+const Frame& box() {
+  return frame(generatedScene(), 0, 0, 1);
 }
 
 }  // namespace stocs::bench

@@ -1,6 +1,8 @@
 #pragma once
-// The real-map frames the benchmarks run on (LM-O cat; packed bin dove), loaded once from
-// STOCS_DATASETS (the folder holding lmo-cat and rutgers-packed).
+// The frames the benchmarks run on, each loaded once: the real-map frames (LM-O cat; packed bin
+// dove) from STOCS_DATASETS (the folder holding lmo-cat and rutgers-packed), and the box of the
+// generated scene the node latency benchmark plays (scripts/bench_latency.sh: `stocs synth
+// --objects 3 --distractors 2 --seed 1`), written to a temporary folder.
 
 #include <opencv2/core.hpp>
 #include <string>
@@ -24,5 +26,6 @@ PipelineParams benchmarkParams();
 /// Throws std::runtime_error when STOCS_DATASETS is unset or the frame is missing.
 const Frame& cat();
 const Frame& dove();
+const Frame& box();
 
 }  // namespace stocs::bench

@@ -80,6 +80,7 @@ void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
 
 BENCHMARK_CAPTURE(softSegment, cat, cat)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(softSegment, dove, dove)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(softSegment, box, box)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(baseSampling, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(baseSampling, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
@@ -89,12 +90,18 @@ BENCHMARK_CAPTURE(verification, dove, dove)->Unit(benchmark::kMicrosecond);
 // One thread (CPU time per core), then all cores: process CPU time over all threads and wall time.
 BENCHMARK_CAPTURE(fullEstimate, cat, cat)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fullEstimate, dove, dove)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(fullEstimate, box, box)->Arg(1)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fullEstimate, cat, cat)
     ->Arg(0)
     ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fullEstimate, dove, dove)
+    ->Arg(0)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(fullEstimate, box, box)
     ->Arg(0)
     ->MeasureProcessCPUTime()
     ->UseRealTime()

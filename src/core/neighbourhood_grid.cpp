@@ -14,9 +14,12 @@ std::vector<uint32_t> allIndices(size_t n) {
   return all;
 }
 
-/// Cells allowed per point before the cells grow beyond half the radius (DenseCells::cover; larger
-/// cells keep the lists exact, only longer).
-constexpr double kCellsPerPoint = 64;
+/// Memory bounds, after which the cells grow beyond the radius (queries stay exact, the lists get
+/// longer): entries of the block index per point, and stored cells per point. The segments of
+/// BENCHMARKS.md store 4 to 50 cells per point; a scattered point stores up to 8 blocks of 64.
+constexpr double kBlocksPerPoint = 64;
+constexpr double kCellsPerPoint = 256;
+constexpr double kMinCells = 8 * 64;  // so that a few points need not share one huge cell
 }  // namespace
 
 NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, float radius)
@@ -41,44 +44,86 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     lo = lo.cwiseMin(points[i]);
     hi = hi.cwiseMax(points[i]);
   }
-  cells_ = DenseCells::cover(lo - Eigen::Vector3f::Constant(radius),
-                             hi - lo + Eigen::Vector3f::Constant(2 * radius), radius / 2,
-                             kCellsPerPoint * static_cast<double>(points_.size()));
-  for (int a = 0; a < 3; ++a) dims_f_[a] = static_cast<float>(cells_.dims[a]);
+  const auto n = static_cast<uint32_t>(points_.size());
 
   // Every cell whose box comes strictly within the radius of a point lists it; the reach is a hair
   // longer, so that rounding in the cell of a query can never leave out a point within the radius
   // (queries test the exact radius).
   const float reach = radius * (1 + 1e-4f);
   const float reach2 = reach * reach;
-  const float cell = cells_.size;
+  // The cells that may come within reach of point j: [lo_cell, hi_cell] per axis.
+  auto cellRange = [&](uint32_t j, size_t(&lo_cell)[3], size_t(&hi_cell)[3]) {
+    const Eigen::Vector3f& p = points_[j];
+    for (int a = 0; a < 3; ++a) {
+      const float from = (p[a] - reach - blocks_.origin[a]) * inv_cell_;
+      const float to = (p[a] + reach - blocks_.origin[a]) * inv_cell_;
+      lo_cell[a] = static_cast<size_t>(std::max(0.0f, std::floor(from)));
+      hi_cell[a] = std::min(blocks_.dims[a] * kBlockSide - 1,
+                            static_cast<size_t>(std::max(0.0f, std::floor(to))));
+    }
+  };
+
+  // The blocks within reach of some point are stored, numbered in order of first use.
+  float cell = radius;
+  uint32_t stored = 0;
+  for (;;) {
+    blocks_ = DenseCells::cover(
+        lo - Eigen::Vector3f::Constant(radius), hi - lo + Eigen::Vector3f::Constant(2 * radius),
+        static_cast<float>(kBlockSide) * cell, std::max(kMinCells, kBlocksPerPoint * n));
+    cell_size_ = blocks_.size / static_cast<float>(kBlockSide);
+    inv_cell_ = 1.0f / cell_size_;
+    block_of_.assign(blocks_.count(), kNoBlock);
+    stored = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+      size_t lo_cell[3], hi_cell[3];
+      cellRange(j, lo_cell, hi_cell);
+      for (size_t z = lo_cell[2] >> kBlockBits; z <= hi_cell[2] >> kBlockBits; ++z) {
+        for (size_t y = lo_cell[1] >> kBlockBits; y <= hi_cell[1] >> kBlockBits; ++y) {
+          for (size_t x = lo_cell[0] >> kBlockBits; x <= hi_cell[0] >> kBlockBits; ++x) {
+            uint32_t& block = block_of_[blocks_.index(x, y, z)];
+            if (block == kNoBlock) block = stored++;
+          }
+        }
+      }
+    }
+    const double cells =
+        static_cast<double>(stored) * static_cast<double>(size_t{1} << (3 * kBlockBits));
+    if (cells <= std::max(kMinCells, kCellsPerPoint * n)) break;
+    cell = cell_size_ * 1.26f;
+  }
+  for (int a = 0; a < 3; ++a) dims_f_[a] = static_cast<float>(blocks_.dims[a] * kBlockSide);
+
+  // Per row of cells (y, z) near the point, the cells of the row within reach form one run.
   auto cellsNear = [&](uint32_t j, auto&& emit) {
     const Eigen::Vector3f& p = points_[j];
     size_t lo_cell[3], hi_cell[3];
-    for (int a = 0; a < 3; ++a) {
-      const float from = (p[a] - reach - cells_.origin[a]) * cells_.inv_size;
-      const float to = (p[a] + reach - cells_.origin[a]) * cells_.inv_size;
-      lo_cell[a] = static_cast<size_t>(std::max(0.0f, std::floor(from)));
-      hi_cell[a] =
-          std::min(cells_.dims[a] - 1, static_cast<size_t>(std::max(0.0f, std::floor(to))));
-    }
+    cellRange(j, lo_cell, hi_cell);
     for (size_t z = lo_cell[2]; z <= hi_cell[2]; ++z) {
-      const float box_z = cells_.origin.z() + static_cast<float>(z) * cell;
-      const float dz = std::max({box_z - p.z(), p.z() - (box_z + cell), 0.0f});
+      const float box_z = blocks_.origin.z() + static_cast<float>(z) * cell_size_;
+      const float dz = std::max({box_z - p.z(), p.z() - (box_z + cell_size_), 0.0f});
       for (size_t y = lo_cell[1]; y <= hi_cell[1]; ++y) {
-        const float box_y = cells_.origin.y() + static_cast<float>(y) * cell;
-        const float dy = std::max({box_y - p.y(), p.y() - (box_y + cell), 0.0f});
+        const float box_y = blocks_.origin.y() + static_cast<float>(y) * cell_size_;
+        const float dy = std::max({box_y - p.y(), p.y() - (box_y + cell_size_), 0.0f});
         const float dzy2 = dz * dz + dy * dy;
         if (dzy2 >= reach2) continue;
-        for (size_t x = lo_cell[0]; x <= hi_cell[0]; ++x) {
-          const float box_x = cells_.origin.x() + static_cast<float>(x) * cell;
-          const float dx = std::max({box_x - p.x(), p.x() - (box_x + cell), 0.0f});
-          if (dzy2 + dx * dx < reach2) emit(cells_.index(x, y, z));
+        // The cells overlapping [p.x - w, p.x + w]: a superset of those strictly within reach at
+        // the run's ends, which only lengthens two lists by rounding.
+        const float w = std::sqrt(reach2 - dzy2);
+        const size_t from = std::max(
+            lo_cell[0], static_cast<size_t>(std::max(
+                            0.0f, std::floor((p.x() - w - blocks_.origin.x()) * inv_cell_))));
+        const size_t to = std::min(
+            hi_cell[0], static_cast<size_t>(std::max(
+                            0.0f, std::floor((p.x() + w - blocks_.origin.x()) * inv_cell_))));
+        for (size_t x = from; x <= to; ++x) {
+          const uint32_t block =
+              block_of_[blocks_.index(x >> kBlockBits, y >> kBlockBits, z >> kBlockBits)];
+          emit(cellIndex(block, x, y, z));
         }
       }
     }
   };
-  sortIntoCells(cells_.count(), static_cast<uint32_t>(points_.size()), cellsNear, start_, lists_);
+  sortIntoCells(static_cast<size_t>(stored) << (3 * kBlockBits), n, cellsNear, start_, lists_);
 }
 
 }  // namespace stocs
