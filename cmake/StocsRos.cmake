@@ -17,9 +17,9 @@ catkin_package(
   CATKIN_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime
 )
 
-# The wrappers: every src/ros file except the executables' mains and the nodelet shell.
+# The wrappers: every src/ros file except the executables' mains and the nodelet shells.
 file(GLOB STOCS_ROS_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*.cpp)
-list(FILTER STOCS_ROS_SOURCES EXCLUDE REGEX "(_main|_nodelet)\\.cpp$")
+list(FILTER STOCS_ROS_SOURCES EXCLUDE REGEX "(_main|nodelets)\\.cpp$")
 add_library(stocs_ros ${STOCS_ROS_SOURCES})
 target_include_directories(stocs_ros PUBLIC ${PROJECT_SOURCE_DIR}/include ${CATKIN_DEVEL_PREFIX}/include)
 target_include_directories(stocs_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
@@ -32,7 +32,7 @@ add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_mai
 target_link_libraries(scene_publisher PRIVATE stocs_ros)
 add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder_main.cpp)
 target_link_libraries(demo_recorder PRIVATE stocs_ros)
-add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/stocs_nodelet.cpp)
+add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/nodelets.cpp)
 target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros)
 
 install(TARGETS stocs_ros stocs_ros_nodelet

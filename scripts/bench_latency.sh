@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Node latency benchmark (issue 6): a generated 640x480 scene of three objects played at RATE Hz
 # through the StoCS node for FRAMES frames; the demo recorder prints the latency from each input
-# stamp to the node's estimates (~objects, published right after TF), p50 and p95.
+# stamp to the node's estimates (~objects, published right after TF), p50 and p95. It runs twice:
+# publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
+# in one manager (passed as shared pointers).
 #   scripts/bench_latency.sh [FRAMES [RATE]]       (defaults: 60 frames at 5 Hz)
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
@@ -25,9 +27,16 @@ for line in open(sys.argv[1]):
         continue
     print(line, end="")
 PY
-port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
-export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$out/ros"
-roslaunch -p "$port" stocs_ros demo.launch dataset:="$out/scene" config:="$out/config.yaml" \
-  results:="$out/results.csv" frames:="$frames" rate:="$rate" timeout:=600 > "$out/roslaunch.log" 2>&1 || true
-grep -E "^latency " "$out/roslaunch.log" || { echo "bench_latency: no result (log: $out/roslaunch.log)" >&2; exit 1; }
+for mode in nodes nodelets; do
+  nodelet=false
+  [ "$mode" = nodelets ] && nodelet=true
+  port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
+  export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$out/ros-$mode"
+  roslaunch -p "$port" stocs_ros demo.launch dataset:="$out/scene" config:="$out/config.yaml" \
+    results:="$out/results-$mode.csv" frames:="$frames" rate:="$rate" timeout:=600 \
+    nodelet:="$nodelet" > "$out/roslaunch-$mode.log" 2>&1 || true
+  line=$(grep -E "^latency " "$out/roslaunch-$mode.log") ||
+    { echo "bench_latency: no result as $mode (log: $out/roslaunch-$mode.log)" >&2; exit 1; }
+  echo "$mode: $line"
+done
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
