@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "stocs/dense_cells.h"
+#include "stocs/fast_floor.h"
 
 namespace stocs {
 
@@ -41,11 +42,11 @@ class PointGrid {
   void forEachWithin(const Eigen::Vector3f& q, float radius, Visit&& visit) const {
     if (points_.empty()) return;
     const float r2 = radius * radius;
-    const float reach = std::ceil(radius * cells_.inv_size);
+    const float reach = ceilFast(radius * cells_.inv_size);
     size_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       // In floats first: a query far outside the box must not overflow an integer.
-      const float c = std::floor((q[a] - cells_.origin[a]) * cells_.inv_size);
+      const float c = floorFast((q[a] - cells_.origin[a]) * cells_.inv_size);
       const float first = std::max(c - reach, 0.0f);
       const float last = std::min(c + reach, static_cast<float>(cells_.dims[a]) - 1.0f);
       if (!(first <= last)) return;

@@ -73,6 +73,12 @@ TEST(PpfQuantizer, NearestBinsAreOwnAndNearerNeighbour) {
   // 47 deg -> bins 4, 5; 90.5 deg -> bins 9, 8.
   const int n = q.nearestKeys({0.0121f, 12 * kDeg, 47 * kDeg, 90.5f * kDeg}, keys);
   ASSERT_EQ(n, 16);
+  // The own bin first, then the distance neighbour (matches are visited in this order).
+  uint32_t own = 0, distance_neighbour = 0;
+  ASSERT_TRUE(q.key({0.0121f, 12 * kDeg, 47 * kDeg, 90.5f * kDeg}, own));
+  ASSERT_TRUE(q.key({0.0074f, 12 * kDeg, 47 * kDeg, 90.5f * kDeg}, distance_neighbour));
+  EXPECT_EQ(keys[0], own);
+  EXPECT_EQ(keys[1], distance_neighbour);
   std::set<uint32_t> got(keys.begin(), keys.begin() + n);
   EXPECT_EQ(got.size(), 16u);
   for (float d : {0.0121f, 0.0074f}) {
