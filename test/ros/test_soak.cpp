@@ -14,9 +14,11 @@
 //       this ratio; a change of the machine's load scales both and leaves it (on the 2 shared
 //       cores, the raw median of a 25 s run's thirds once moved 1.9x, while in other runs it
 //       moved with the estimation time and the ratio stayed within 1.09-1.15);
-//     - in runs whose thirds hold at least kTailSamples outputs, where the load averages out, the
-//       raw latency's median and p95 (in a short run the p95 of a third is its largest sample,
-//       decided by one scheduling stall).
+//     - in runs whose thirds hold at least kTailSamples outputs: the p95 of that ratio (a backlog
+//       that only the slowest frames hit), and the node's CPU time per output (an estimation
+//       that slows down as the node runs). Neither moves with the machine's load: the raw latency
+//       did, both ways, when the virtual machine lost 40-90% of its CPU time to the hypervisor
+//       for minutes (steal time), and its median and p95 failed a run whose ratio check passed.
 // Prints a summary line (RSS, counts, latency p50/p95, CPU, load) for docs/reliability.md.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <fmt/format.h>
@@ -217,6 +219,9 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
 
   std::vector<std::pair<double, long>> rss;  // (seconds since start, kB)
   double cpu_at_warmup = -1, load_at_warmup = -1;
+  // The node's CPU seconds at the end of the first third and at the start of the last one.
+  const double third = (g_params.duration - g_params.warmup) / 3;
+  double cpu_first_end = -1, cpu_last_start = -1;
   uint64_t sent = 0;
   std::atomic<bool> stop{false};
   const ros::Time start = ros::Time::now();
@@ -237,9 +242,12 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
       cpu_at_warmup = cpuSeconds(pid);
       load_at_warmup = loadAverage();
     }
+    if (cpu_first_end < 0 && t >= g_params.warmup + third) cpu_first_end = cpuSeconds(pid);
+    if (cpu_last_start < 0 && t >= g_params.duration - third) cpu_last_start = cpuSeconds(pid);
     rate.sleep();
   }
-  const double cpu_after_warmup = cpuSeconds(pid) - cpu_at_warmup;
+  const double cpu_at_end = cpuSeconds(pid);
+  const double cpu_after_warmup = cpu_at_end - cpu_at_warmup;
   const double load_at_end = loadAverage();
   stop = true;
   service.join();
@@ -295,7 +303,6 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
   const double rss_max = *std::max_element(after.begin(), after.end());
 
   // Latency: first against last third of the time after the warm-up.
-  const double third = (g_params.duration - g_params.warmup) / 3;
   std::vector<double> all, first, last, ratio_first, ratio_last;
   for (const Latency& l : latencies) {
     if (l.sent_at < g_params.warmup) continue;
@@ -311,22 +318,32 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
   const double p95_first = quantile(first, 0.95), p95_last = quantile(last, 0.95);
   const double ratio_p50_first = quantile(ratio_first, 0.5);
   const double ratio_p50_last = quantile(ratio_last, 0.5);
+  const double ratio_p95_first = quantile(ratio_first, 0.95);
+  const double ratio_p95_last = quantile(ratio_last, 0.95);
+  // Outputs include the ~estimate answers, which come at the same period in both thirds.
+  const double cpu_per_output_first =
+      (cpu_first_end - cpu_at_warmup) / std::max<size_t>(1, first.size());
+  const double cpu_per_output_last =
+      (cpu_at_end - cpu_last_start) / std::max<size_t>(1, last.size());
 
   const std::string summary = fmt::format(
       "soak: {:.0f} s at {:.0f} Hz, warm-up {:.0f} s: {} frames sent; ~statistics: {} estimated, "
       "{} replaced, {} rejected, {} kept, {} cloud messages dropped, {} queued; {} service calls; "
       "RSS {:.0f} kB after warm-up, {:.0f} kB at the end ({:+.2f}%), max {:.0f} kB; latency of "
       "{} outputs after warm-up p50 {:.3f} s, p95 {:.3f} s; first third ({} outputs) p50 {:.3f} s, "
-      "p95 {:.3f} s, latency / estimation time p50 {:.2f}; last third ({} outputs) p50 {:.3f} s, "
-      "p95 {:.3f} s, latency / estimation time p50 {:.2f}; node CPU after warm-up "
+      "p95 {:.3f} s, latency / estimation time p50 {:.2f} p95 {:.2f}, node CPU per output {:.3f} "
+      "s; "
+      "last third ({} outputs) p50 {:.3f} s, p95 {:.3f} s, latency / estimation time p50 {:.2f} "
+      "p95 {:.2f}, node CPU per output {:.3f} s; node CPU after warm-up "
       "{:.1f} s ({:.0f}% of one core); load average {:.1f} after warm-up, {:.1f} at the end",
       g_params.duration, g_params.rate, g_params.warmup, sent, c["frames estimated"],
       c["frames replaced"], c["frames rejected"], c["frames kept"], dropped_cloud,
       c["queued " + cloud_topic], service_calls_.load(), rss_start, rss_end,
       100 * (rss_end / rss_start - 1), rss_max, all.size(), quantile(all, 0.5), quantile(all, 0.95),
-      first.size(), p50_first, p95_first, ratio_p50_first, last.size(), p50_last, p95_last,
-      ratio_p50_last, cpu_after_warmup,
-      100 * cpu_after_warmup / (g_params.duration - g_params.warmup), load_at_warmup, load_at_end);
+      first.size(), p50_first, p95_first, ratio_p50_first, ratio_p95_first, cpu_per_output_first,
+      last.size(), p50_last, p95_last, ratio_p50_last, ratio_p95_last, cpu_per_output_last,
+      cpu_after_warmup, 100 * cpu_after_warmup / (g_params.duration - g_params.warmup),
+      load_at_warmup, load_at_end);
   std::cout << summary << std::endl;
   ROS_INFO("%s", summary.c_str());
 
@@ -338,10 +355,13 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
       << "the median latency / estimation time grew from " << ratio_p50_first << " to "
       << ratio_p50_last;
   if (first.size() >= kTailSamples && last.size() >= kTailSamples) {
-    EXPECT_LE(p50_last, kMaxLatencyGrowth * p50_first)
-        << "latency median grew from " << p50_first << " s to " << p50_last << " s";
-    EXPECT_LE(p95_last, kMaxLatencyGrowth * p95_first)
-        << "latency p95 grew from " << p95_first << " s to " << p95_last << " s";
+    EXPECT_LE(ratio_p95_last, kMaxLatencyGrowth * ratio_p95_first)
+        << "the p95 of latency / estimation time grew from " << ratio_p95_first << " to "
+        << ratio_p95_last << " (raw latency p95 " << p95_first << " s -> " << p95_last << " s)";
+    EXPECT_LE(cpu_per_output_last, kMaxLatencyGrowth * cpu_per_output_first)
+        << "the node's CPU time per output grew from " << cpu_per_output_first << " s to "
+        << cpu_per_output_last << " s (raw latency median " << p50_first << " s -> " << p50_last
+        << " s)";
   }
 }
 
