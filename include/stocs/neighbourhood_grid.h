@@ -79,6 +79,7 @@ class NeighbourhoodGrid {
  private:
   static constexpr int kBlockBits = 2;  // blocks of 2^2 cells a side
   static constexpr size_t kBlockSide = size_t{1} << kBlockBits;
+  static constexpr size_t kCellsPerBlock = kBlockSide * kBlockSide * kBlockSide;
   static constexpr uint32_t kNoBlock = UINT32_MAX;
 
   /// Index of cell (x, y, z) (whole-grid cell coordinates) inside its stored block.

@@ -19,7 +19,7 @@ std::vector<uint32_t> allIndices(size_t n) {
 /// BENCHMARKS.md store 4 to 50 cells per point; a scattered point stores up to 8 blocks of 64.
 constexpr double kBlocksPerPoint = 64;
 constexpr double kCellsPerPoint = 256;
-constexpr double kMinCells = 8 * 64;  // so that a few points need not share one huge cell
+constexpr double kMinCells = 8 * 64;  // 8 blocks: a few points need not share one huge cell
 }  // namespace
 
 NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points, float radius)
@@ -52,7 +52,7 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
   const float reach = radius * (1 + 1e-4f);
   const float reach2 = reach * reach;
   // Cell coordinate of a grid coordinate, 0 below the grid: truncation is the floor there, and
-  // it is not a libm call (std::floor is one without SSE4.1, and this runs ~60 times per point).
+  // not a libm call (see fast_floor.h; this runs for every row of cells near every point).
   auto cellOf = [](float c) { return c > 0 ? static_cast<size_t>(c) : size_t{0}; };
   // The cells that may come within reach of point j: [lo_cell, hi_cell] per axis.
   auto cellRange = [&](uint32_t j, size_t(&lo_cell)[3], size_t(&hi_cell)[3]) {
@@ -88,8 +88,7 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
         }
       }
     }
-    const double cells =
-        static_cast<double>(stored) * static_cast<double>(size_t{1} << (3 * kBlockBits));
+    const double cells = static_cast<double>(stored) * static_cast<double>(kCellsPerBlock);
     if (cells <= std::max(kMinCells, kCellsPerPoint * n)) break;
     cell = cell_size_ * 1.26f;
   }
@@ -123,7 +122,7 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
       }
     }
   };
-  sortIntoCells(static_cast<size_t>(stored) << (3 * kBlockBits), n, cellsNear, start_, lists_);
+  sortIntoCells(stored * kCellsPerBlock, n, cellsNear, start_, lists_);
 }
 
 }  // namespace stocs
