@@ -69,3 +69,24 @@ add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node sce
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
 add_rostest(test/ros/soak.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_soak ${STOCS_ROS_TEST_DEPENDS})
+
+# The soak runs alone: `catkin_make -jN run_tests` runs tests side by side, and a neighbour that
+# takes both cores stalls the soak's node long enough to lose messages in roscpp's queues, which
+# the soak counts as a failure. Its hidden run_tests target (the one `run_tests` builds) therefore
+# waits for every other test of the package, and ctest runs it serially.
+get_property(_stocs_targets DIRECTORY PROPERTY BUILDSYSTEM_TARGETS)
+set(_stocs_soak "")
+set(_stocs_others "")
+foreach(_target IN LISTS _stocs_targets)
+  if(_target MATCHES "^_run_tests_${PROJECT_NAME}_rostest_.*soak")
+    set(_stocs_soak ${_target})
+  elseif(_target MATCHES "^_run_tests_${PROJECT_NAME}_(gtest|rostest)_.")
+    list(APPEND _stocs_others ${_target})
+  endif()
+endforeach()
+if(NOT _stocs_soak OR NOT _stocs_others)
+  message(FATAL_ERROR "the soak's or the other tests' run_tests targets were not found")
+endif()
+add_dependencies(${_stocs_soak} ${_stocs_others})
+string(REGEX REPLACE "^_run_tests_" "_ctest_" _stocs_soak_ctest ${_stocs_soak})
+set_tests_properties(${_stocs_soak_ctest} PROPERTIES RUN_SERIAL TRUE)
