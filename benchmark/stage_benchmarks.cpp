@@ -24,7 +24,7 @@ void softSegment(benchmark::State& state, const Frame& (*get)()) {
 void baseSampling(benchmark::State& state, const Frame& (*get)()) {
   const Frame& f = get();
   const BaseSampler sampler(f.segment, f.model.ppf_map, benchmarkParams().stocs.base);
-  std::vector<std::pair<int, float>> scratch;
+  BaseSamplingScratch scratch;
   uint64_t b = 0;
   for (auto _ : state) {
     Rng rng(streamSeed(0, b++));
@@ -37,7 +37,7 @@ void congruentSets(benchmark::State& state, const Frame& (*get)()) {
   const PipelineParams p = benchmarkParams();
   const BaseSampler sampler(f.segment, f.model.ppf_map, p.stocs.base);
   const CongruentSetMatcher matcher(f.model, p.stocs.congruent);
-  std::vector<std::pair<int, float>> scratch;
+  BaseSamplingScratch scratch;
   std::vector<std::array<Eigen::Vector3f, 4>> points, normals;
   for (uint64_t b = 0; points.size() < 100 && b < 1000; ++b) {
     Rng rng(streamSeed(0, b));

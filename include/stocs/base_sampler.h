@@ -8,6 +8,10 @@
 // tests; the text says the thresholds ensure "a wide interior angle" and coplanarity, which is what
 // is implemented here.
 //
+// b2, b3 and b4 must be PPF-consistent with b1, so they lie within the model's longest pair of b1:
+// each is drawn among the points of the grid cells around b1 (cells of that length), never from a
+// scan of the whole segment, which spreads over the background and other objects.
+//
 // When the segment carries instance regions (labelRegions), b1 is never a boundary point and all
 // four points come from b1's region, as in the authors' instance-aware sampling for packed bins.
 
@@ -16,6 +20,7 @@
 #include <optional>
 #include <vector>
 
+#include "stocs/point_grid.h"
 #include "stocs/ppf_hash_map.h"
 #include "stocs/random.h"
 #include "stocs/soft_segment.h"
@@ -34,27 +39,44 @@ struct BaseSamplerParams {
 /// Indices of the four base points in the segment.
 using Base = std::array<int, 4>;
 
+/// Working memory of BaseSampler::sample, reused between calls to avoid allocation.
+struct BaseSamplingScratch {
+  std::vector<std::array<uint32_t, 2>> runs;  ///< grid positions [begin, end) around b1
+  std::vector<double> run_cumulative;         ///< prefix sums of the runs' pi_k
+  std::vector<int> points;                    ///< candidates of the later rounds of a draw
+  std::vector<double> cumulative;             ///< prefix sums of their pi_k
+};
+
 class BaseSampler {
  public:
   BaseSampler(const SoftSegment& segment, const PpfHashMap& map, const BaseSamplerParams& params);
 
   /// A base, or nothing when `max_attempts` draws of b1 all led to a point with zero weight.
-  /// `scratch` is reused between calls to avoid allocation.
-  std::optional<Base> sample(Rng& rng, std::vector<std::pair<int, float>>& scratch) const;
+  std::optional<Base> sample(Rng& rng, BaseSamplingScratch& scratch) const;
 
  private:
+  /// pi_k of point i (zero on region boundaries).
+  double weight(int i) const { return cumulative_[i] - (i > 0 ? cumulative_[i - 1] : 0.0); }
   /// A point drawn from pi_k (boundary points excluded when there are regions).
   int drawFirst(Rng& rng) const;
-  /// A point drawn from pi_k restricted to `admissible` points, or -1 when there is none.
-  template <class Admissible>
-  int drawConditional(Rng& rng, Admissible&& admissible,
-                      std::vector<std::pair<int, float>>& candidates) const;
-  bool tryComplete(Rng& rng, Base& base, std::vector<std::pair<int, float>>& candidates) const;
+  /// Finds the grid runs around b1 and their weights; false when they weigh nothing.
+  bool gatherNeighbourhood(int b1, BaseSamplingScratch& scratch) const;
+  /// A point drawn from pi_k restricted to the runs of gatherNeighbourhood.
+  int drawNear(Rng& rng, const BaseSamplingScratch& scratch) const;
+  /// A point drawn from pi_k restricted to the points of the runs that are both `geometric` (cheap
+  /// tests) and `on_model` (PPF checks, the costly ones), or -1 when there is none.
+  template <class Geometric, class OnModel>
+  int drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_model,
+                      BaseSamplingScratch& scratch) const;
+  bool tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch) const;
 
   const SoftSegment& segment_;
   const PpfHashMap& map_;
   BaseSamplerParams params_;
-  std::vector<double> cumulative_;  // prefix sums of pi_k for drawing b1
+  std::vector<double> cumulative_;       // prefix sums of pi_k for drawing b1
+  PointGrid grid_;                       // the segment in cells of the model's longest pair
+  std::vector<double> grid_cumulative_;  // prefix sums of pi_k in the grid's sorted order
+  float reach_;                          // the model's longest pair, metres
   float cos_wide_;
 };
 

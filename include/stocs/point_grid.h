@@ -40,8 +40,21 @@ class PointGrid {
   /// anywhere, also outside the points' bounding box).
   template <class Visit>
   void forEachWithin(const Eigen::Vector3f& q, float radius, Visit&& visit) const {
-    if (points_.empty()) return;
     const float r2 = radius * radius;
+    forEachRun(q, radius, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t k = begin; k < end; ++k) {
+        const float d2 = (points_[k] - q).squaredNorm();
+        if (d2 < r2) visit(static_cast<int>(index_[k]), d2);
+      }
+    });
+  }
+
+  /// Calls visit(begin, end) for runs of sorted positions [begin, end) that together hold every
+  /// point within `radius` of q, among others of the same cells; originalIndex maps a position to
+  /// the constructor's index. Positions follow the cells, so they cover each run contiguously.
+  template <class Visit>
+  void forEachRun(const Eigen::Vector3f& q, float radius, Visit&& visit) const {
+    if (points_.empty()) return;
     const float reach = ceilFast(radius * cells_.inv_size);
     size_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -55,15 +68,16 @@ class PointGrid {
     }
     for (size_t z = lo[2]; z <= hi[2]; ++z) {
       for (size_t y = lo[1]; y <= hi[1]; ++y) {
-        for (uint32_t k = start_[cells_.index(lo[0], y, z)],
-                      end = start_[cells_.index(hi[0], y, z) + 1];
-             k < end; ++k) {
-          const float d2 = (points_[k] - q).squaredNorm();
-          if (d2 < r2) visit(static_cast<int>(index_[k]), d2);
-        }
+        const uint32_t begin = start_[cells_.index(lo[0], y, z)],
+                       end = start_[cells_.index(hi[0], y, z) + 1];
+        if (begin < end) visit(begin, end);
       }
     }
   }
+
+  size_t size() const { return points_.size(); }
+  /// The constructor's index of the point at sorted position k.
+  uint32_t originalIndex(uint32_t k) const { return index_[k]; }
 
  private:
   DenseCells cells_;                     // over the points' bounding box

@@ -11,15 +11,11 @@
 namespace stocs {
 namespace {
 
-/// Draws an index from (index, weight) candidates with positive weights summing to `total`.
-int drawWeighted(Rng& rng, const std::vector<std::pair<int, float>>& candidates, double total) {
-  const double target = uniform01(rng) * total;
-  double acc = 0;
-  for (const auto& [index, weight] : candidates) {
-    acc += weight;
-    if (acc > target) return index;
-  }
-  return candidates.back().first;  // rounding at the very end of the range
+/// The index i drawn with probability (cumulative[i] - cumulative[i-1]) / cumulative.back().
+size_t drawByPrefixSums(Rng& rng, const std::vector<double>& cumulative) {
+  const double target = uniform01(rng) * cumulative.back();
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), target);
+  return std::min<size_t>(it - cumulative.begin(), cumulative.size() - 1);
 }
 
 }  // namespace
@@ -41,6 +37,8 @@ BaseSampler::BaseSampler(const SoftSegment& segment, const PpfHashMap& map,
     : segment_(segment),
       map_(map),
       params_(params),
+      // An empty map (no pairs) has no length: any positive cell size serves.
+      reach_(std::max(map.maxDistance(), 1e-3f)),
       cos_wide_(std::cos(params.wide_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
   params_.validate();
   cumulative_.reserve(segment.size());
@@ -49,16 +47,19 @@ BaseSampler::BaseSampler(const SoftSegment& segment, const PpfHashMap& map,
     const bool on_boundary = !segment.region.empty() && segment.region[i] < 0;
     cumulative_.push_back(acc += on_boundary ? 0.0f : segment.probability[i]);
   }
+  grid_.assign(segment.points, reach_);
+  grid_cumulative_.reserve(segment.size());
+  acc = 0;
+  for (uint32_t k = 0; k < grid_.size(); ++k) {
+    grid_cumulative_.push_back(acc += weight(static_cast<int>(grid_.originalIndex(k))));
+  }
 }
 
 int BaseSampler::drawFirst(Rng& rng) const {
-  const double target = uniform01(rng) * cumulative_.back();
-  const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), target);
-  return static_cast<int>(std::min<size_t>(it - cumulative_.begin(), cumulative_.size() - 1));
+  return static_cast<int>(drawByPrefixSums(rng, cumulative_));
 }
 
-std::optional<Base> BaseSampler::sample(Rng& rng,
-                                        std::vector<std::pair<int, float>>& scratch) const {
+std::optional<Base> BaseSampler::sample(Rng& rng, BaseSamplingScratch& scratch) const {
   if (segment_.size() < 4 || !(cumulative_.back() > 0)) return std::nullopt;
   for (int attempt = 0; attempt < params_.max_attempts; ++attempt) {
     Base base{drawFirst(rng), -1, -1, -1};
@@ -67,32 +68,81 @@ std::optional<Base> BaseSampler::sample(Rng& rng,
   return std::nullopt;
 }
 
-template <class Admissible>
-int BaseSampler::drawConditional(Rng& rng, Admissible&& admissible,
-                                 std::vector<std::pair<int, float>>& candidates) const {
-  // Rejection sampling: proposals from pi_k accepted when admissible are distributed exactly as
-  // pi_k restricted to the admissible points, at the cost of a few PPF checks instead of one per
-  // segment point. When admissible points are rare, the exact scan below takes over; mixing the two
-  // leaves the distribution unchanged.
-  constexpr int kProposals = 128;
-  for (int t = 0; t < kProposals; ++t) {
-    const int p = drawFirst(rng);
-    if (admissible(p)) return p;
-  }
-  candidates.clear();
+bool BaseSampler::gatherNeighbourhood(int b1, BaseSamplingScratch& scratch) const {
+  scratch.runs.clear();
+  scratch.run_cumulative.clear();
   double total = 0;
-  for (int p = 0; p < static_cast<int>(segment_.size()); ++p) {
-    const float w = static_cast<float>(cumulative_[p] - (p > 0 ? cumulative_[p - 1] : 0.0));
-    if (w > 0 && admissible(p)) {
-      candidates.emplace_back(p, w);
-      total += w;
-    }
-  }
-  return candidates.empty() ? -1 : drawWeighted(rng, candidates, total);
+  grid_.forEachRun(segment_.points[b1], reach_, [&](uint32_t begin, uint32_t end) {
+    const double before = begin > 0 ? grid_cumulative_[begin - 1] : 0.0;
+    scratch.runs.push_back({begin, end});
+    scratch.run_cumulative.push_back(total += grid_cumulative_[end - 1] - before);
+  });
+  return total > 0;
 }
 
-bool BaseSampler::tryComplete(Rng& rng, Base& base,
-                              std::vector<std::pair<int, float>>& candidates) const {
+int BaseSampler::drawNear(Rng& rng, const BaseSamplingScratch& scratch) const {
+  const auto [begin, end] = scratch.runs[drawByPrefixSums(rng, scratch.run_cumulative)];
+  const double before = begin > 0 ? grid_cumulative_[begin - 1] : 0.0;
+  const double target = before + uniform01(rng) * (grid_cumulative_[end - 1] - before);
+  const auto first = grid_cumulative_.begin() + begin, last = grid_cumulative_.begin() + end;
+  const uint32_t k = static_cast<uint32_t>(
+      std::min(std::upper_bound(first, last, target), last - 1) - grid_cumulative_.begin());
+  return static_cast<int>(grid_.originalIndex(k));
+}
+
+template <class Geometric, class OnModel>
+int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_model,
+                                 BaseSamplingScratch& scratch) const {
+  // Rejection sampling in up to three rounds. Proposals from a distribution proportional to pi_k
+  // on a superset of the admissible points, accepted when admissible, are distributed exactly as
+  // pi_k restricted to the admissible points, and so is the result whichever round gives it.
+  // Round 1 proposes from the cells around b1. When admissible points are rare there (b4 must lie
+  // in a plane), round 2 proposes among the points of those cells that pass the geometric tests,
+  // found by one scan without PPF checks; round 3 checks all of those.
+  constexpr int kProposals = 128;
+  for (int t = 0; t < kProposals; ++t) {
+    const int p = drawNear(rng, scratch);
+    // weight > 0: rounding at the end of a run may land on a point without weight.
+    if (weight(p) > 0 && geometric(p) && on_model(p)) return p;
+  }
+  std::vector<int>& points = scratch.points;
+  std::vector<double>& cumulative = scratch.cumulative;
+  points.clear();
+  cumulative.clear();
+  double total = 0;
+  for (const auto& [begin, end] : scratch.runs) {
+    for (uint32_t k = begin; k < end; ++k) {
+      const int p = static_cast<int>(grid_.originalIndex(k));
+      const double w = grid_cumulative_[k] - (k > 0 ? grid_cumulative_[k - 1] : 0.0);
+      if (w > 0 && geometric(p)) {
+        points.push_back(p);
+        cumulative.push_back(total += w);
+      }
+    }
+  }
+  if (points.empty()) return -1;
+  for (int t = 0; t < kProposals; ++t) {
+    const int p = points[drawByPrefixSums(rng, cumulative)];
+    if (on_model(p)) return p;
+  }
+  size_t kept = 0;
+  double previous = 0;
+  total = 0;
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double w = cumulative[i] - previous;
+    previous = cumulative[i];
+    if (on_model(points[i])) {
+      points[kept] = points[i];
+      cumulative[kept++] = total += w;
+    }
+  }
+  if (kept == 0) return -1;
+  points.resize(kept);
+  cumulative.resize(kept);
+  return points[drawByPrefixSums(rng, cumulative)];
+}
+
+bool BaseSampler::tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch) const {
   const auto& pts = segment_.points;
   const auto& nrm = segment_.normals;
   const bool regions = !segment_.region.empty();
@@ -105,8 +155,10 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base,
 
   // pi(p | b1) ~ pi_k(p) phi(p, b1).
   const int b1 = base[0];
+  if (!gatherNeighbourhood(b1, scratch)) return false;
   base[1] = drawConditional(
-      rng, [&](int p) { return p != b1 && sameRegion(p) && consistentWith(p, b1); }, candidates);
+      rng, [&](int p) { return p != b1 && sameRegion(p); },
+      [&](int p) { return consistentWith(p, b1); }, scratch);
   if (base[1] < 0) return false;
 
   // pi(p | b1, b2): also phi(p, b2) and a wide angle at b1 between b1b2 and b1p.
@@ -118,12 +170,8 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base,
     return len > 0 && std::abs(e12.dot(e1p) / len) <= cos_wide_;
   };
   base[2] = drawConditional(
-      rng,
-      [&](int p) {
-        return p != b2 && wideAngle(p) && sameRegion(p) && consistentWith(p, b1) &&
-               consistentWith(p, b2);
-      },
-      candidates);
+      rng, [&](int p) { return p != b2 && wideAngle(p) && sameRegion(p); },
+      [&](int p) { return consistentWith(p, b1) && consistentWith(p, b2); }, scratch);
   if (base[2] < 0) return false;
 
   // pi(p | b1, b2, b3) = pi(p | b1, b2) phi(p, b3), zero off the plane through b1, b2, b3: the
@@ -135,10 +183,12 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base,
       [&](int p) {
         return p != b2 && p != b3 &&
                std::abs(plane_normal.dot(pts[p] - pts[b1])) <= params_.coplanarity &&
-               wideAngle(p) && sameRegion(p) && consistentWith(p, b1) && consistentWith(p, b2) &&
-               consistentWith(p, b3);
+               wideAngle(p) && sameRegion(p);
       },
-      candidates);
+      [&](int p) {
+        return consistentWith(p, b1) && consistentWith(p, b2) && consistentWith(p, b3);
+      },
+      scratch);
   return base[3] >= 0;
 }
 

@@ -247,7 +247,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
     // cannot be among the K best overall, so verification may stop early on them.
     std::vector<float> thread_top;
-    std::vector<std::pair<int, float>> scratch;
+    BaseSamplingScratch scratch;
     std::vector<CongruentSet> sets;
     CongruentSetMatcher::Workspace matching;
     std::vector<PlacedPose> scored;   // hypotheses of the current base

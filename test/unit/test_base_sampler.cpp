@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 
 #include "stocs/base_sampler.h"
 #include "stocs/error.h"
@@ -51,7 +52,7 @@ class BaseSamplerTest : public ::testing::Test {
   std::vector<Base> sampleBases(const BaseSamplerParams& params, uint64_t seed, int count) const {
     const BaseSampler sampler(segment_, map_, params);
     Rng rng(seed);
-    std::vector<std::pair<int, float>> scratch;
+    BaseSamplingScratch scratch;
     std::vector<Base> bases;
     for (int k = 0; k < count; ++k) {
       if (const auto base = sampler.sample(rng, scratch)) bases.push_back(*base);
@@ -88,6 +89,70 @@ TEST_F(BaseSamplerTest, TheFirstPointFollowsTheSoftSegmentation) {
   EXPECT_GT(high, 0.9 * bases.size());
 }
 
+TEST_F(BaseSamplerTest, TheLastPointFollowsTheSoftSegmentationAmongTheAdmissiblePoints) {
+  // b4 is drawn from pi_k restricted to the points that pass every test given b1, b2 and b3. A
+  // clutter of 2000 points within 1.5 mm, beside the object and within reach of b1, holds 95% of
+  // pi_k, so proposals from around b1 rarely hit an admissible point and most draws of b4 come
+  // from the later rounds of drawConditional. Its expected chance to fall on the object's favoured
+  // side, summed over the bases, is compared with the observed count.
+  const size_t object_points = segment_.size();
+  double object_total = 0;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+  for (size_t i = 0; i < object_points; ++i) {
+    object_total += segment_.probability[i] = segment_.points[i].x() > 0.02f ? 0.9f : 0.1f;
+    centroid += segment_.points[i] / static_cast<float>(object_points);
+  }
+  for (size_t i = 0; i < object_points; ++i)
+    segment_.probability[i] *= static_cast<float>(0.05 / object_total);
+  const Eigen::Vector3f clutter = centroid + Eigen::Vector3f(0, 0.5f * map_.maxDistance(), 0);
+  Rng clutter_rng(3);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3f offset(uniform01(clutter_rng), uniform01(clutter_rng),
+                                 uniform01(clutter_rng));
+    segment_.points.push_back(clutter + 0.0015f * offset);
+    segment_.normals.push_back((offset - Eigen::Vector3f::Constant(0.5f)).normalized());
+    segment_.probability.push_back(0.95f / 2000);
+    segment_.confidence.push_back(1.0f);
+    segment_.pixel.push_back(static_cast<int>(segment_.pixel.size()));
+  }
+  BaseSamplerParams params;
+  params.max_attempts = 1000;  // b1 falls on the clutter 19 times in 20 and may find no b2
+  const std::vector<Base> bases = sampleBases(params, 12, 400);
+  ASSERT_GT(bases.size(), 350u);
+  const auto& pts = segment_.points;
+  const auto& nrm = segment_.normals;
+  const float cos_wide = std::cos(params.wide_angle_deg * static_cast<float>(M_PI) / 180);
+  double expected = 0, variance = 0;
+  int observed = 0;
+  for (const Base& b : bases) {
+    const Eigen::Vector3f e12 = (pts[b[1]] - pts[b[0]]).normalized();
+    const Eigen::Vector3f normal = e12.cross(pts[b[2]] - pts[b[0]]).normalized();
+    double favoured = 0, all = 0;
+    for (int p = 0; p < static_cast<int>(segment_.size()); ++p) {
+      const Eigen::Vector3f e1p = pts[p] - pts[b[0]];
+      const bool admissible = p != b[1] && p != b[2] && e1p.norm() > 0 &&
+                              std::abs(e12.dot(e1p) / e1p.norm()) <= cos_wide &&
+                              std::abs(normal.dot(e1p)) <= params.coplanarity &&
+                              map_.consistent(pts[b[0]], nrm[b[0]], pts[p], nrm[p]) &&
+                              map_.consistent(pts[b[1]], nrm[b[1]], pts[p], nrm[p]) &&
+                              map_.consistent(pts[b[2]], nrm[b[2]], pts[p], nrm[p]);
+      if (!admissible) continue;
+      all += segment_.probability[p];
+      if (pts[p].x() > 0.02f) favoured += segment_.probability[p];
+    }
+    ASSERT_GT(all, 0) << "b4 was drawn from an empty admissible set";
+    const double q = favoured / all;
+    expected += q;
+    variance += q * (1 - q);
+    observed += pts[b[3]].x() > 0.02f;
+  }
+  // Four standard deviations of the sum of the Bernoulli draws.
+  EXPECT_NEAR(observed, expected, 4 * std::sqrt(variance) + 1)
+      << "expected " << expected << " of " << bases.size();
+  // The prior must matter here, or the check above would not test it.
+  EXPECT_GT(expected, 0.6 * bases.size());
+}
+
 TEST_F(BaseSamplerTest, ZeroProbabilityPointsAreNeverDrawn) {
   for (size_t i = 0; i < segment_.size(); ++i)
     segment_.probability[i] = (i % 2) ? 2.0f / segment_.size() : 0.0f;
@@ -122,7 +187,7 @@ TEST_F(BaseSamplerTest, NoBaseWhenNoPairIsOnTheModel) {
   }
   const BaseSampler sampler(tiny, map_, BaseSamplerParams{});
   Rng rng(1);
-  std::vector<std::pair<int, float>> scratch;
+  BaseSamplingScratch scratch;
   EXPECT_FALSE(sampler.sample(rng, scratch));
 }
 

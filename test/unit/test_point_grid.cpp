@@ -47,6 +47,30 @@ TEST(PointGrid, FindsExactlyThePointsWithinTheRadius) {
   expectSameAsBruteForce(grid, points, 0.025f, 0.06f);  // a radius of several cells
 }
 
+TEST(PointGrid, RunsHoldEveryPointUpToTheRadiusOnce) {
+  // Base sampling draws among the runs' points: every point at most `radius` away must be there
+  // (the PPF map accepts a pair of exactly its longest length), and none twice.
+  auto points = randomPoints(2000, 0.05f, 3);
+  points.push_back({0.02f, 0, 0});
+  points.push_back({0.02f + 0.015f, 0, 0});  // exactly the radius from the query below
+  const PointGrid grid(points, 0.015f);
+  auto queries = randomPoints(200, 0.06f, 5);
+  queries.push_back({0.02f, 0, 0});
+  for (const Eigen::Vector3f& q : queries) {
+    std::vector<int> seen(points.size(), 0);
+    grid.forEachRun(q, 0.015f, [&](uint32_t begin, uint32_t end) {
+      ASSERT_LT(begin, end);
+      for (uint32_t k = begin; k < end; ++k) ++seen[grid.originalIndex(k)];
+    });
+    for (size_t i = 0; i < points.size(); ++i) {
+      ASSERT_LE(seen[i], 1) << "point " << i << " in two runs";
+      if ((points[i] - q).norm() <= 0.015f) {
+        ASSERT_EQ(seen[i], 1) << "point " << i << " missed";
+      }
+    }
+  }
+}
+
 TEST(PointGrid, ClosestWithinPrefersTheNearestAndThenTheLowerIndex) {
   const std::vector<Eigen::Vector3f> points = {{0, 0, 0}, {0.003f, 0, 0}, {0.003f, 0, 0}};
   const PointGrid grid(points, 0.005f);
