@@ -5,6 +5,22 @@
 namespace stocs {
 namespace {
 
+/// Entry (i, j) of the adjugate of s: the cofactor of s(j, i), by the 3x3 rule of Sarrus.
+double adjugateEntry(const Eigen::Matrix4d& s, int i, int j) {
+  int rows[3], cols[3];
+  for (int r = 0, n = 0; r < 4; ++r) {
+    if (r != j) rows[n++] = r;
+  }
+  for (int c = 0, n = 0; c < 4; ++c) {
+    if (c != i) cols[n++] = c;
+  }
+  const auto e = [&](int r, int c) { return s(rows[r], cols[c]); };
+  const double det = e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1)) -
+                     e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0)) +
+                     e(0, 2) * (e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0));
+  return (i + j) % 2 ? -det : det;
+}
+
 /// Rotation that best maps the centred points `a` onto the centred points `b` (least squares),
 /// by the quaternion characteristic polynomial (QCP; Theobald 2005, Liu et al. 2010): the optimal
 /// quaternion is the eigenvector of Horn's 4x4 key matrix K for its largest eigenvalue, found by
@@ -42,24 +58,19 @@ std::optional<Eigen::Matrix3d> quaternionFit(const Eigen::Matrix<double, 3, 4>& 
     lambda -= step;
     if (std::abs(step) <= 1e-12 * scale) break;
   }
-  // K - lambda I has rank 3 for a simple eigenvalue, and every column of its adjugate is then a
-  // multiple of the eigenvector: take the longest.
+  // K - lambda I has rank 3 for a simple eigenvalue, and its adjugate is then c v v^T for the
+  // eigenvector v: the longest column is the one with the largest diagonal entry, so 4 + 3
+  // cofactors give it instead of all 16.
   const Eigen::Matrix4d s = k - lambda * Eigen::Matrix4d::Identity();
-  Eigen::Vector4d best = Eigen::Vector4d::Zero();
+  int longest = 0;
+  double diagonal[4];
   for (int j = 0; j < 4; ++j) {
-    Eigen::Vector4d column;
-    for (int i = 0; i < 4; ++i) {
-      Eigen::Matrix3d minor;  // s without row j and column i: cofactor (i, j) of adj(s)
-      for (int r = 0, mr = 0; r < 4; ++r) {
-        if (r == j) continue;
-        for (int c = 0, mc = 0; c < 4; ++c) {
-          if (c != i) minor(mr, mc++) = s(r, c);
-        }
-        ++mr;
-      }
-      column(i) = ((i + j) % 2 ? -1.0 : 1.0) * minor.determinant();
-    }
-    if (column.squaredNorm() > best.squaredNorm()) best = column;
+    diagonal[j] = adjugateEntry(s, j, j);
+    if (std::abs(diagonal[j]) > std::abs(diagonal[longest])) longest = j;
+  }
+  Eigen::Vector4d best;
+  for (int i = 0; i < 4; ++i) {
+    best(i) = i == longest ? diagonal[i] : adjugateEntry(s, i, longest);
   }
   // Cofactors scale with the cube of the key matrix's entries; relative to that they vanish only
   // when the points (nearly) coincide.
