@@ -35,8 +35,10 @@ void PointGrid::assign(const std::vector<Eigen::Vector3f>& points, float cell_si
     size_t c[3];
     for (int a = 0; a < 3; ++a) {
       // The bounding box's far faces can round onto one cell past the last.
-      c[a] = std::min(static_cast<size_t>((points[i][a] - cells_.origin[a]) * cells_.inv_size),
-                      cells_.dims[a] - 1);
+      // Through uint32_t: a float to size_t conversion costs a compare and a branch on x86-64.
+      c[a] = std::min<size_t>(
+          static_cast<uint32_t>((points[i][a] - cells_.origin[a]) * cells_.inv_size),
+          cells_.dims[a] - 1);
     }
     cell_[i] = cells_.index(c[0], c[1], c[2]);
   }
