@@ -87,14 +87,21 @@ size_t CongruentSetMatcher::find(const std::array<Eigen::Vector3f, 4>& points,
                               });
   if (second.empty()) return 0;
 
-  // Six base distances; a congruent set matches each within the tolerance.
+  // Six base distances; a congruent set matches each within the tolerance, tested on squared
+  // lengths (no square root per candidate pair): |d - b| <= tol iff (b - tol)^2 <= d^2 <= (b +
+  // tol)^2 for b - tol >= 0, and d^2 <= (b + tol)^2 otherwise.
   const float tol = params_.tolerance;
-  float base_dist[4][4];
+  float lo2[4][4], hi2[4][4];
   for (int x = 0; x < 4; ++x) {
-    for (int y = 0; y < 4; ++y) base_dist[x][y] = (points[x] - points[y]).norm();
+    for (int y = 0; y < 4; ++y) {
+      const float d = (points[x] - points[y]).norm();
+      lo2[x][y] = d > tol ? (d - tol) * (d - tol) : 0.0f;
+      hi2[x][y] = (d + tol) * (d + tol);
+    }
   }
   auto agrees = [&](int x, int y, uint16_t mx, uint16_t my) {
-    return std::abs((mp[mx] - mp[my]).norm() - base_dist[x][y]) <= tol;
+    const float d2 = (mp[mx] - mp[my]).squaredNorm();
+    return d2 >= lo2[x][y] && d2 <= hi2[x][y];
   };
 
   workspace.meeting.clear();
