@@ -9,6 +9,15 @@
 #include "stocs/neighbourhood_grid.h"
 
 namespace stocs {
+namespace {
+
+// Steps below these end the iterations (radians; metres: 0.05 mm).
+constexpr double kConvergedRotation = 1e-4;
+constexpr double kConvergedTranslation = 5e-5;
+// Largest difference of pose matrix entries taken as a return to an earlier pose.
+constexpr float kCycleTolerance = 1e-6f;
+
+}  // namespace
 
 void IcpParams::validate() const {
   if (candidates < 1 || candidates > 1000) {
@@ -42,7 +51,7 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
                                      int region) const {
   const SoftSegment& segment = segment_;
   auto inRegion = [&](int i) { return region < 0 || segment.region[i] == region; };
-  Eigen::Isometry3f current = pose;
+  Eigen::Isometry3f current = pose, before_last = pose;
   for (int it = 0; it < params_.iterations; ++it) {
     // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w and a
     // translation v has Jacobian [p x n, n].
@@ -73,8 +82,15 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
     if (w.norm() > 0)
       step.linear() = Eigen::AngleAxisd(w.norm(), w.normalized()).toRotationMatrix().cast<float>();
     step.translation() = x.tail<3>().cast<float>();
-    current = step * current;
-    if (w.norm() < 1e-5 && x.tail<3>().norm() < 1e-6) break;
+    const Eigen::Isometry3f next = step * current;
+    // Converged: the step moves the model by well under the sensor's resolution. Or cycling: the
+    // correspondences flip between two sets and the step returns to the pose of two steps back.
+    const bool cycling =
+        it >= 1 && (next.matrix() - before_last.matrix()).cwiseAbs().maxCoeff() < kCycleTolerance;
+    before_last = current;
+    current = next;
+    if ((w.norm() < kConvergedRotation && x.tail<3>().norm() < kConvergedTranslation) || cycling)
+      break;
   }
   return current;
 }
