@@ -56,7 +56,7 @@ class BaseSampler {
 
  private:
   /// pi_k of point i (zero on region boundaries).
-  double weight(int i) const { return cumulative_[i] - (i > 0 ? cumulative_[i - 1] : 0.0); }
+  double weight(int i) const;
   /// A point drawn from pi_k (boundary points excluded when there are regions).
   int drawFirst(Rng& rng) const;
   /// Finds the grid runs around b1 and their weights; false when they weigh nothing.

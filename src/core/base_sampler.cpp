@@ -11,11 +11,25 @@
 namespace stocs {
 namespace {
 
-/// The index i drawn with probability (cumulative[i] - cumulative[i-1]) / cumulative.back().
+/// Sum of the weights before position k of the prefix sums `cumulative`.
+double sumBefore(const std::vector<double>& cumulative, size_t k) {
+  return k > 0 ? cumulative[k - 1] : 0.0;
+}
+
+/// A position i in [begin, end) drawn with probability proportional to its weight
+/// cumulative[i] - sumBefore(cumulative, i).
+size_t drawByPrefixSums(Rng& rng, const std::vector<double>& cumulative, size_t begin, size_t end) {
+  const double before = sumBefore(cumulative, begin);
+  const double target = before + uniform01(rng) * (cumulative[end - 1] - before);
+  const auto first = cumulative.begin() + static_cast<std::ptrdiff_t>(begin),
+             last = cumulative.begin() + static_cast<std::ptrdiff_t>(end);
+  // The clamp: rounding at the very end of the range.
+  return static_cast<size_t>(std::min(std::upper_bound(first, last, target), last - 1) -
+                             cumulative.begin());
+}
+
 size_t drawByPrefixSums(Rng& rng, const std::vector<double>& cumulative) {
-  const double target = uniform01(rng) * cumulative.back();
-  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), target);
-  return std::min<size_t>(it - cumulative.begin(), cumulative.size() - 1);
+  return drawByPrefixSums(rng, cumulative, 0, cumulative.size());
 }
 
 }  // namespace
@@ -55,6 +69,10 @@ BaseSampler::BaseSampler(const SoftSegment& segment, const PpfHashMap& map,
   }
 }
 
+double BaseSampler::weight(int i) const {
+  return cumulative_[i] - sumBefore(cumulative_, static_cast<size_t>(i));
+}
+
 int BaseSampler::drawFirst(Rng& rng) const {
   return static_cast<int>(drawByPrefixSums(rng, cumulative_));
 }
@@ -73,21 +91,17 @@ bool BaseSampler::gatherNeighbourhood(int b1, BaseSamplingScratch& scratch) cons
   scratch.run_cumulative.clear();
   double total = 0;
   grid_.forEachRun(segment_.points[b1], reach_, [&](uint32_t begin, uint32_t end) {
-    const double before = begin > 0 ? grid_cumulative_[begin - 1] : 0.0;
     scratch.runs.push_back({begin, end});
-    scratch.run_cumulative.push_back(total += grid_cumulative_[end - 1] - before);
+    scratch.run_cumulative.push_back(total += grid_cumulative_[end - 1] -
+                                              sumBefore(grid_cumulative_, begin));
   });
   return total > 0;
 }
 
 int BaseSampler::drawNear(Rng& rng, const BaseSamplingScratch& scratch) const {
   const auto [begin, end] = scratch.runs[drawByPrefixSums(rng, scratch.run_cumulative)];
-  const double before = begin > 0 ? grid_cumulative_[begin - 1] : 0.0;
-  const double target = before + uniform01(rng) * (grid_cumulative_[end - 1] - before);
-  const auto first = grid_cumulative_.begin() + begin, last = grid_cumulative_.begin() + end;
-  const uint32_t k = static_cast<uint32_t>(
-      std::min(std::upper_bound(first, last, target), last - 1) - grid_cumulative_.begin());
-  return static_cast<int>(grid_.originalIndex(k));
+  const size_t k = drawByPrefixSums(rng, grid_cumulative_, begin, end);
+  return static_cast<int>(grid_.originalIndex(static_cast<uint32_t>(k)));
 }
 
 template <class Geometric, class OnModel>
@@ -113,7 +127,7 @@ int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_m
   for (const auto& [begin, end] : scratch.runs) {
     for (uint32_t k = begin; k < end; ++k) {
       const int p = static_cast<int>(grid_.originalIndex(k));
-      const double w = grid_cumulative_[k] - (k > 0 ? grid_cumulative_[k - 1] : 0.0);
+      const double w = grid_cumulative_[k] - sumBefore(grid_cumulative_, k);
       if (w > 0 && geometric(p)) {
         points.push_back(p);
         cumulative.push_back(total += w);
