@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <utility>
 #include <vector>
 
 #include "benchmark_frames.h"
@@ -103,37 +104,27 @@ BENCHMARK_CAPTURE(congruentSets, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, dove, dove)->Unit(benchmark::kMicrosecond);
 // One thread (CPU time per core), then all cores: process CPU time over all threads and wall time.
-// A repetition runs every seed once.
-BENCHMARK_CAPTURE(fullEstimate, cat, cat)
-    ->Arg(1)
-    ->Iterations(kFullEstimateSeeds)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, dove, dove)
-    ->Arg(1)
-    ->Iterations(kFullEstimateSeeds)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, box, box)
-    ->Arg(1)
-    ->Iterations(kFullEstimateSeeds)
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, cat, cat)
-    ->Arg(0)
-    ->Iterations(kFullEstimateSeeds)
-    ->MeasureProcessCPUTime()
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, dove, dove)
-    ->Arg(0)
-    ->Iterations(kFullEstimateSeeds)
-    ->MeasureProcessCPUTime()
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(fullEstimate, box, box)
-    ->Arg(0)
-    ->Iterations(kFullEstimateSeeds)
-    ->MeasureProcessCPUTime()
-    ->UseRealTime()
-    ->Unit(benchmark::kMillisecond);
+// A repetition runs every seed once. Registered in a loop: the six differ only in frame and
+// threads.
+const bool kFullEstimateRegistered = [] {
+  const std::pair<const char*, const Frame& (*)()> frames[] = {
+      {"fullEstimate/cat", cat}, {"fullEstimate/dove", dove}, {"fullEstimate/box", box}};
+  for (const auto& [name, get] : frames) {
+    benchmark::RegisterBenchmark(name, fullEstimate, get)
+        ->Arg(1)
+        ->Iterations(kFullEstimateSeeds)
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const auto& [name, get] : frames) {
+    benchmark::RegisterBenchmark(name, fullEstimate, get)
+        ->Arg(0)
+        ->Iterations(kFullEstimateSeeds)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  return true;
+}();
 
 }  // namespace
 }  // namespace stocs::bench
