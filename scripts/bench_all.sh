@@ -16,8 +16,14 @@
 #            real-map frames and on a generated frame with exact truth (`stocs synth`, clean
 #            segmentation, noise-free depth), and the dove bin without its boundary map;
 #            summarised in seeds/summary.md
+#   equal/   issue 6's side by side at equal accuracy: every method at its defaults beside StoCS at
+#            5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all five
+#            methods, both StoCS variants swept) and on the simulator presets of lmo-cat,
+#            rutgers-packed and ycbv-0000 (sim/: StoCS swept beside PPF, the fastest baseline; the
+#            4PCS methods take half an hour on these presets, see sim/ above); each report's "Speed
+#            at equal or better accuracy" table gives the ratios
 # and log.txt with the load average before and after each part. STOCS_BENCH_PARTS selects parts
-# (default "real sim seeds"), e.g. to finish an interrupted run into the same OUT.
+# (default "real sim seeds equal"), e.g. to finish an interrupted run into the same OUT.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 [ $# -eq 2 ] || { echo "usage: $0 DATASETS OUT" >&2; exit 2; }
@@ -38,20 +44,33 @@ datasets=(--dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --dataset "
 # dataset and source) that takes over 5 minutes is killed and its targets count as missing.
 common=(--methods stocs,stocs-hard,fpcs,kfpcs,ppf --cache-dir "$out/cache" --run-timeout 300)
 
-parts=" ${STOCS_BENCH_PARTS:-real sim seeds} "
+parts=" ${STOCS_BENCH_PARTS:-real sim seeds equal} "
 
 if [[ $parts == *" real "* ]]; then
   note "real maps: start"
   "$tool" bench "${datasets[@]}" --prob real --out "$out/real" "${common[@]}" \
-    --thresholds 0.3,0.5,0.7,0.9 --budgets 0.1,0.5,1
+    --thresholds 0.3,0.5,0.7,0.9 --budgets 0.1,0.5,1 --no-bases-sweep
   note "real maps: done"
 fi
 
 if [[ $parts == *" sim "* ]]; then
   note "simulator presets: start"
   "$tool" bench "${datasets[@]}" --prob sim:mild --prob sim:noisy --out "$out/sim" \
-    --no-threshold-sweep --no-budget-sweep --time-budget 10 "${common[@]}"
+    --no-threshold-sweep --no-budget-sweep --no-bases-sweep --time-budget 10 "${common[@]}"
   note "simulator presets: done"
+fi
+
+if [[ $parts == *" equal "* ]]; then
+  note "equal accuracy: start"
+  swept=(--no-threshold-sweep --no-budget-sweep --base-counts 5,10,20,50,100 --cache-dir "$out/cache"
+         --run-timeout 300)
+  "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --prob real \
+    --methods stocs,stocs-hard,fpcs,kfpcs,ppf --sweep-methods stocs,stocs-hard "${swept[@]}" \
+    --out "$out/equal/real"
+  "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" \
+    --dataset "$data/ycbv-0000" --prob sim:mild --prob sim:noisy --methods stocs,ppf \
+    --sweep-methods stocs --time-budget 10 "${swept[@]}" --out "$out/equal/sim"
+  note "equal accuracy: done"
 fi
 
 [[ $parts == *" seeds "* ]] || exit 0

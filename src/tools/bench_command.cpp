@@ -4,7 +4,9 @@
 #include <fmt/ranges.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <map>
+#include <set>
 
 #include "bench_report.h"
 #include "child_process.h"
@@ -28,6 +30,7 @@ struct BenchOptions {
   std::vector<std::string> datasets;
   std::vector<std::string> sources = {"real"};
   std::vector<std::string> methods;
+  std::vector<std::string> sweep_methods;
   std::string out;
   std::string split = "test";
   std::vector<int> scenes;
@@ -36,8 +39,10 @@ struct BenchOptions {
   MethodOptions method_options;
   std::vector<double> thresholds = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9};
   std::vector<double> budgets = {0.05, 0.1, 0.2, 0.5, 1.0};
+  std::vector<int> base_counts = {5, 10, 20, 50, 100};
   bool no_threshold_sweep = false;
   bool no_budget_sweep = false;
+  bool no_bases_sweep = false;
   int budget_bases = 100000;
   double run_timeout = 0;
   bool no_plots = false;
@@ -86,7 +91,7 @@ std::vector<BenchRun> plannedRuns(const BenchOptions& o, const BenchData& d) {
   std::vector<BenchRun> runs;
   const auto add = [&](Sweep sweep, double value, const std::string& stem) {
     for (size_t i = 0; i < d.inputs.size(); ++i) {
-      for (const std::string& method : d.methods) {
+      for (const std::string& method : sweep == Sweep::kNone ? d.methods : d.swept_methods) {
         BenchRun r;
         r.input = i;
         r.method = method;
@@ -105,6 +110,7 @@ std::vector<BenchRun> plannedRuns(const BenchOptions& o, const BenchData& d) {
   add(Sweep::kNone, 0, "main");
   for (double t : d.thresholds) add(Sweep::kThreshold, t, fmt::format("threshold-{:g}", t));
   for (double b : d.budgets) add(Sweep::kBudget, b, fmt::format("budget-{:g}", b));
+  for (double n : d.base_counts) add(Sweep::kBases, n, fmt::format("bases-{:g}", n));
   return runs;
 }
 
@@ -121,6 +127,8 @@ std::vector<std::string> childCommand(const BenchOptions& o, const BenchInput& i
   } else if (r.sweep == Sweep::kBudget) {
     set_here["--time-budget"] = {fmt::format("{}", r.value)};
     set_here["--bases"] = {std::to_string(o.budget_bases)};
+  } else if (r.sweep == Sweep::kBases) {
+    set_here["--bases"] = {fmt::format("{:g}", r.value)};
   }
   std::vector<std::string> argv = {selfExecutable().string(),
                                    "estimate",
@@ -209,6 +217,10 @@ std::string commandLine(const CLI::App& cmd) {
 void validate(const BenchOptions& o) {
   o.params.validate();
   for (const std::string& m : o.methods) makeMethod(m, o.method_options);
+  for (const std::string& m : o.sweep_methods) {
+    if (std::find(o.methods.begin(), o.methods.end(), m) == o.methods.end())
+      throw InputError(fmt::format("sweep method '{}' is not one of the methods run", m));
+  }
   for (double t : o.thresholds) {
     if (!(t > 0 && t < 1)) throw InputError(fmt::format("threshold {} is outside (0, 1)", t));
   }
@@ -217,6 +229,10 @@ void validate(const BenchOptions& o) {
       throw InputError(fmt::format("time budget {} s is outside (0, 3600]", b));
   }
   if (!(o.run_timeout >= 0)) throw InputError("run timeout must not be negative");
+  for (int n : o.base_counts) {
+    if (n < 1 || n > 1000000)
+      throw InputError(fmt::format("base count {} is outside [1, 1000000]", n));
+  }
   if (o.budget_bases < 1 || o.budget_bases > 1000000) {
     throw InputError(fmt::format("budget bases {} is outside [1, 1000000]", o.budget_bases));
   }
@@ -234,8 +250,13 @@ int runBench(BenchOptions o) {
   BenchData d;
   d.command = o.command;
   d.methods = o.methods;
+  d.swept_methods = o.sweep_methods.empty() ? o.methods : o.sweep_methods;
   if (!o.no_threshold_sweep) d.thresholds = o.thresholds;
   if (!o.no_budget_sweep) d.budgets = o.budgets;
+  if (!o.no_bases_sweep) {
+    std::set<int> counts(o.base_counts.begin(), o.base_counts.end());
+    d.base_counts.assign(counts.begin(), counts.end());
+  }
   d.inputs = benchInputs(o, d.notes);
   d.runs = plannedRuns(o, d);
 
@@ -273,6 +294,9 @@ Command registerBench(CLI::App& app) {
                   "Methods, comma-separated (default: all: " +
                       fmt::format("{}", fmt::join(methodNames(), ", ")) + ")")
       ->delimiter(',');
+  cmd->add_option("--sweep-methods", o->sweep_methods,
+                  "Methods run again in the sweeps, comma-separated (default: every method run)")
+      ->delimiter(',');
   addSelectionOptions(*cmd, o->split, o->scenes, o->objects);
   cmd->add_option("--boundaries", o->boundaries, "Instance boundary maps: 'auto' or 'off'")
       ->check(CLI::IsMember({"auto", "off"}));
@@ -286,6 +310,11 @@ Command registerBench(CLI::App& app) {
   cmd->add_flag("--no-budget-sweep", o->no_budget_sweep, "Skip the time-budget sweep");
   cmd->add_option("--budget-bases", o->budget_bases,
                   "Bases in the budget sweep, so many that the budget ends the search");
+  cmd->add_option("--base-counts", o->base_counts,
+                  "Bases per object of the base-count sweep (speed against accuracy; the 4PCS "
+                  "methods' iterations)")
+      ->delimiter(',');
+  cmd->add_flag("--no-bases-sweep", o->no_bases_sweep, "Skip the base-count sweep");
   cmd->add_option("--run-timeout", o->run_timeout,
                   "Seconds after which a run is killed and counted as failed (0: no limit)");
   cmd->add_flag("--no-plots", o->no_plots, "Write no PNG plots (no gnuplot needed)");

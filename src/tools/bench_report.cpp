@@ -106,17 +106,26 @@ ReportTable mainTable(const BenchData& d) {
   return table;
 }
 
+Cell sweepValueHeader(Sweep sweep) {
+  switch (sweep) {
+    case Sweep::kThreshold:
+      return {"segmentation threshold", "threshold"};
+    case Sweep::kBudget:
+      return {"time budget (s)", "time_budget_s"};
+    default:
+      return {"bases", "bases"};
+  }
+}
+
 /// Sweep results at every value; `only` restricts the rows to one scope (markdown), else all.
 ReportTable sweepTable(const BenchData& d, Sweep sweep, const std::vector<double>& values,
                        std::optional<Scope> only) {
-  const Cell value_header = sweep == Sweep::kThreshold ? Cell{"segmentation threshold", "threshold"}
-                                                       : Cell{"time budget (s)", "time_budget_s"};
-  std::vector<Cell> header =
-      withMetrics({textCell("method"), textCell("dataset"), textCell("source"), value_header});
+  std::vector<Cell> header = withMetrics(
+      {textCell("method"), textCell("dataset"), textCell("source"), sweepValueHeader(sweep)});
   header.push_back({"time median (s)", "time_median_s"});
   header.push_back({"CPU median (s)", "cpu_median_s"});
   ReportTable table(header);
-  for (const std::string& method : d.methods) {
+  for (const std::string& method : d.swept_methods) {
     for (Scope scope : scopes(d)) {
       if (only && scope != *only) continue;
       for (double v : values) {
@@ -176,7 +185,7 @@ LinePlot thresholdPlot(const BenchData& d, Scope scope) {
                   "success: error < 2 cm and 10° (%)");
   plot.x_min = 0;
   plot.x_max = 1;
-  for (const std::string& method : d.methods) {
+  for (const std::string& method : d.swept_methods) {
     PlotSeries s{method, {}};
     for (double t : d.thresholds) {
       const Pool p = pool(d, method, Sweep::kThreshold, t, scope);
@@ -187,20 +196,79 @@ LinePlot thresholdPlot(const BenchData& d, Scope scope) {
   return plot;
 }
 
-LinePlot anytimePlot(const BenchData& d, Scope scope) {
-  LinePlot plot = percentPlot("Accuracy vs time budget (anytime), " + scopeName(d, scope),
-                              "median time per object (s), one point per budget", "ADD-S AUC (%)");
+/// ADD-S AUC against median time per object, one point per value of a sweep.
+LinePlot timeAccuracyPlot(const BenchData& d, Scope scope, Sweep sweep,
+                          const std::vector<double>& values, const std::string& title,
+                          const std::string& point) {
+  LinePlot plot =
+      percentPlot(title + ", " + scopeName(d, scope),
+                  "median time per object (s), one point per " + point, "ADD-S AUC (%)");
   plot.log_x = true;
-  for (const std::string& method : d.methods) {
+  for (const std::string& method : d.swept_methods) {
     PlotSeries s{method, {}};
-    for (double b : d.budgets) {
-      const Pool p = pool(d, method, Sweep::kBudget, b, scope);
+    for (double v : values) {
+      const Pool p = pool(d, method, sweep, v, scope);
       const double time = quantile(p.seconds, 0.5);
       if (time > 0) s.points.emplace_back(time, 100 * summarize(p.errors).adds_auc);
     }
     plot.series.push_back(s);
   }
   return plot;
+}
+
+LinePlot anytimePlot(const BenchData& d, Scope scope) {
+  return timeAccuracyPlot(d, scope, Sweep::kBudget, d.budgets, "Accuracy vs time budget (anytime)",
+                          "budget");
+}
+
+LinePlot basesPlot(const BenchData& d, Scope scope) {
+  return timeAccuracyPlot(d, scope, Sweep::kBases, d.base_counts, "Accuracy vs bases",
+                          "base count");
+}
+
+/// Issue 6's comparison: each swept method at its fewest bases whose ADD-S AUC is at least that of
+/// another method's main run, over the widest scope, with the time ratios (other / swept).
+ReportTable equalAccuracyTable(const BenchData& d) {
+  ReportTable table({textCell("method"),
+                     textCell("against"),
+                     {"its ADD-S AUC", "against_adds_auc"},
+                     {"its time median (s)", "against_time_median_s"},
+                     {"its CPU median (s)", "against_cpu_median_s"},
+                     {"fewest bases at equal or better AUC", "bases"},
+                     {"ADD-S AUC", "adds_auc"},
+                     {"time median (s)", "time_median_s"},
+                     {"CPU median (s)", "cpu_median_s"},
+                     {"faster by (time)", "time_ratio"},
+                     {"faster by (CPU)", "cpu_ratio"}});
+  const Scope scope = widest(d);
+  const auto median = [](const std::vector<double>& v) { return quantile(v, 0.5); };
+  for (const std::string& method : d.swept_methods) {
+    for (const std::string& against : d.methods) {
+      if (against == method) continue;
+      const Pool other = pool(d, against, Sweep::kNone, 0, scope);
+      const double target_auc = summarize(other.errors).adds_auc;
+      std::vector<Cell> row = {textCell(method), textCell(against), percentCell(target_auc),
+                               numberCell(median(other.seconds), 3),
+                               numberCell(median(other.cpu_seconds), 3)};
+      const auto match = std::find_if(d.base_counts.begin(), d.base_counts.end(), [&](double n) {
+        return summarize(pool(d, method, Sweep::kBases, n, scope).errors).adds_auc >= target_auc;
+      });
+      if (match == d.base_counts.end()) {
+        row.push_back(textCell("none"));
+        for (int i = 0; i < 5; ++i) row.push_back(numberCell(std::nan(""), 0));
+      } else {
+        const Pool p = pool(d, method, Sweep::kBases, *match, scope);
+        row.push_back(textCell(fmt::format("{:g}", *match)));
+        row.push_back(percentCell(summarize(p.errors).adds_auc));
+        row.push_back(numberCell(median(p.seconds), 3));
+        row.push_back(numberCell(median(p.cpu_seconds), 3));
+        row.push_back(numberCell(median(other.seconds) / median(p.seconds), 1));
+        row.push_back(numberCell(median(other.cpu_seconds) / median(p.cpu_seconds), 1));
+      }
+      table.add(row);
+    }
+  }
+  return table;
 }
 
 std::string machine() {
@@ -252,6 +320,7 @@ std::string BenchRun::label(const std::vector<BenchInput>& inputs) const {
   const std::string base = method + " on " + inputs[input].name();
   if (sweep == Sweep::kThreshold) return fmt::format("{}, threshold {:g}", base, value);
   if (sweep == Sweep::kBudget) return fmt::format("{}, budget {:g} s", base, value);
+  if (sweep == Sweep::kBases) return fmt::format("{}, {:g} bases", base, value);
   return base;
 }
 
@@ -303,6 +372,10 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
        "Each method run again with `--time-budget` at every value, with a number of bases so "
        "large that the budget ends the search.",
        "budget_sweep", anytimePlot},
+      {Sweep::kBases, d.base_counts, "Accuracy versus bases",
+       "Each method run again with `--bases` at every value (PCL's 4PCS: its iterations; "
+       "OpenCV's PPF has no such setting, so its rows only repeat).",
+       "bases_sweep", basesPlot},
   };
   for (const SweepSection& s : sections) {
     if (s.values.empty()) continue;
@@ -310,6 +383,19 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
           sweepTable(d, s.sweep, s.values, widest(d)).markdown() + figures(s.stem, s.plot);
     writeTextFile(out / (std::string(s.stem) + ".csv"),
                   sweepTable(d, s.sweep, s.values, std::nullopt).csv());
+  }
+
+  if (!d.base_counts.empty() && d.methods.size() > 1) {
+    const ReportTable table = equalAccuracyTable(d);
+    md +=
+        "\n## Speed at equal or better accuracy\n\nEach method of the base-count sweep at "
+        "the fewest bases whose ADD-S AUC, over " +
+        scopeName(d, widest(d)) +
+        ", is at least that of another method's main run; \"faster by\" is the other "
+        "method's median time per object over this one's (above 1: this method is faster). "
+        "\"none\": no swept base count reached that AUC.\n\n" +
+        table.markdown();
+    writeTextFile(out / "equal_accuracy.csv", table.csv());
   }
 
   std::string notes;

@@ -1,6 +1,7 @@
 #pragma once
 // What `stocs bench` measured, and the report it writes from it: markdown and CSV tables (method x
-// dataset, segmentation-threshold sweep, time-budget sweep), per-target CSV and PNG plots.
+// dataset, segmentation-threshold, time-budget and base-count sweeps, speed at equal accuracy),
+// per-target CSV and PNG plots.
 
 #include <filesystem>
 #include <string>
@@ -23,14 +24,14 @@ struct BenchInput {
   std::string tag() const;
 };
 
-enum class Sweep { kNone, kThreshold, kBudget };
+enum class Sweep { kNone, kThreshold, kBudget, kBases };
 
 /// One child run of `stocs estimate`: a method on an input, at defaults or at one sweep value.
 struct BenchRun {
   size_t input = 0;
   std::string method;
   Sweep sweep = Sweep::kNone;
-  double value = 0;  ///< segmentation threshold or time budget (s); unused for kNone
+  double value = 0;  ///< segmentation threshold, time budget (s) or bases; unused for kNone
   std::filesystem::path results, per_object, log;
 
   ChildOutcome child;
@@ -46,15 +47,18 @@ struct BenchRun {
 struct BenchData {
   std::vector<BenchInput> inputs;
   std::vector<std::string> methods;
+  std::vector<std::string> swept_methods;  ///< the methods run in the sweeps
   std::vector<double> thresholds;
   std::vector<double> budgets;
+  std::vector<double> base_counts;  ///< ascending
   std::vector<BenchRun> runs;
   std::vector<std::string> notes;  ///< e.g. inputs skipped for want of targets
   std::string command;             ///< the command line, for the report
 };
 
-/// Writes into `out`: results.md, summary.csv, targets.csv, threshold_sweep.csv and
-/// budget_sweep.csv (when swept), and with `plots` plots/*.png (see line_plot.h).
+/// Writes into `out`: results.md, summary.csv, targets.csv, threshold_sweep.csv, budget_sweep.csv,
+/// bases_sweep.csv and equal_accuracy.csv (when swept), and with `plots` plots/*.png (see
+/// line_plot.h).
 void writeBenchReport(const BenchData& data, const std::filesystem::path& out, bool plots);
 
 }  // namespace stocs::tools

@@ -68,6 +68,13 @@ class EvalCliTest : public ::testing::Test {
 
   std::string data() const { return (root_ / "data").string(); }
 
+  /// `stocs bench` on the generated frame into root_/bench with `options`; its exit code.
+  int bench(const std::string& options, std::string& log) const {
+    return test::runCommand(kTool + " bench --dataset " + data() + " --out " +
+                                (root_ / "bench").string() + " " + options,
+                            log);
+  }
+
   std::filesystem::path root_;
   Eigen::Isometry3f truth_;
 };
@@ -220,19 +227,55 @@ bool isPng(const std::filesystem::path& file) {
   return std::string(magic, 8) == "\x89PNG\r\n\x1a\n" && std::filesystem::file_size(file) > 2000;
 }
 
+using CsvRows = std::vector<std::map<std::string, std::string>>;
+
+/// equal_accuracy.csv against the main and base-count tables: one row per ordered pair of methods,
+/// naming the fewest swept bases whose AUC reaches the other method's, with the ratio of medians.
+void expectFewestBasesAtEqualAccuracy(const std::filesystem::path& out, const CsvRows& summary,
+                                      const CsvRows& bases) {
+  const auto equal = readCsv(out / "equal_accuracy.csv");
+  ASSERT_EQ(equal.size(), summary.size() * (summary.size() - 1));
+  for (const auto& row : equal) {
+    const auto other = std::find_if(summary.begin(), summary.end(), [&](const auto& s) {
+      return s.at("method") == row.at("against");
+    });
+    ASSERT_NE(other, summary.end());
+    const double target = number(*other, "adds_auc");
+    EXPECT_EQ(number(row, "against_adds_auc"), target);
+    std::string fewest = "none";
+    const std::map<std::string, std::string>* match = nullptr;
+    for (const auto& b : bases) {  // ascending counts
+      if (b.at("method") == row.at("method") && number(b, "adds_auc") >= target) {
+        fewest = b.at("bases");
+        match = &b;
+        break;
+      }
+    }
+    ASSERT_EQ(row.at("bases"), fewest) << row.at("method") << " against " << row.at("against");
+    if (!match) continue;
+    EXPECT_EQ(number(row, "adds_auc"), number(*match, "adds_auc"));
+    EXPECT_NEAR(number(row, "time_ratio"),
+                number(*other, "time_median_s") / number(*match, "time_median_s"), 1e-6);
+    EXPECT_NEAR(number(row, "cpu_ratio"),
+                number(*other, "cpu_median_s") / number(*match, "cpu_median_s"), 1e-6);
+  }
+}
+
 TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   const std::filesystem::path out = root_ / "bench";
   std::string log;
   // A trailing separator does not change the dataset's name.
   ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + "/ --out " + out.string() +
                                  " --methods stocs,stocs-hard --prob real --thresholds 0.5,0.95 "
-                                 "--budgets 0.05 --bases 30 --cache-dir " +
+                                 "--budgets 0.05 --base-counts 30,5 --bases 30 --cache-dir " +
                                  (root_ / "cache").string(),
                              log),
             0)
       << log;
   // Not a terminal: one line per run.
-  EXPECT_NE(log.find("bench [8/8] stocs-hard on data/real, budget 0.05 s: ok"), std::string::npos)
+  EXPECT_NE(log.find("bench [8/12] stocs-hard on data/real, budget 0.05 s: ok"), std::string::npos)
+      << log;
+  EXPECT_NE(log.find("bench [12/12] stocs-hard on data/real, 30 bases: ok"), std::string::npos)
       << log;
 
   const auto summary = readCsv(out / "summary.csv");
@@ -277,9 +320,14 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   EXPECT_EQ(thresholds[1].at("threshold"), "0.95");
   EXPECT_EQ(thresholds[1].at("found"), "0");
   EXPECT_EQ(readCsv(out / "budget_sweep.csv").size(), 2u);
+  const auto bases = readCsv(out / "bases_sweep.csv");
+  ASSERT_EQ(bases.size(), 4u);
+  EXPECT_EQ(bases[0].at("bases"), "5");  // ascending, whatever the order given
+  EXPECT_EQ(bases[1].at("bases"), "30");
+  expectFewestBasesAtEqualAccuracy(out, summary, bases);
 
   for (const char* plot : {"accuracy_threshold_data_real.png", "threshold_sweep_data_real.png",
-                           "budget_sweep_data_real.png"}) {
+                           "budget_sweep_data_real.png", "bases_sweep_data_real.png"}) {
     EXPECT_TRUE(isPng(out / "plots" / plot)) << plot;
   }
   std::ifstream md(out / "results.md");
@@ -298,10 +346,9 @@ TEST_F(EvalCliTest, BenchSurvivesAFailingRun) {
   // A folder where the results file should go makes that run fail to write them.
   std::filesystem::create_directories(out / "bop" / "data_real" / "stocs.csv" / "blocker");
   std::string log;
-  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
-                                 " --methods stocs,stocs-hard --no-threshold-sweep "
-                                 "--no-budget-sweep --no-plots --bases 20 --no-cache",
-                             log),
+  ASSERT_EQ(bench("--methods stocs,stocs-hard --no-threshold-sweep --no-budget-sweep "
+                  "--no-bases-sweep --no-plots --bases 20 --no-cache",
+                  log),
             0)
       << log;
   EXPECT_NE(log.find("stocs on data/real: FAILED: exit code 2"), std::string::npos) << log;
@@ -314,13 +361,35 @@ TEST_F(EvalCliTest, BenchSurvivesAFailingRun) {
   EXPECT_FALSE(std::filesystem::exists(out / "plots"));
 }
 
+TEST_F(EvalCliTest, BenchSweepsOnlyTheSweepMethods) {
+  const std::filesystem::path out = root_ / "bench";
+  std::string log;
+  ASSERT_EQ(bench("--methods stocs,stocs-hard --sweep-methods stocs-hard --thresholds 0.5 "
+                  "--no-budget-sweep --base-counts 10 --no-plots --bases 20 --no-cache",
+                  log),
+            0)
+      << log;
+  EXPECT_NE(log.find("bench [4/4] stocs-hard on data/real, 10 bases: ok"), std::string::npos)
+      << log;
+  const auto thresholds = readCsv(out / "threshold_sweep.csv");
+  ASSERT_EQ(thresholds.size(), 1u);
+  EXPECT_EQ(thresholds[0].at("method"), "stocs-hard");
+  const auto bases = readCsv(out / "bases_sweep.csv");
+  ASSERT_EQ(bases.size(), 1u);
+  EXPECT_EQ(bases[0].at("method"), "stocs-hard");
+  const auto equal = readCsv(out / "equal_accuracy.csv");
+  ASSERT_EQ(equal.size(), 1u);
+  EXPECT_EQ(equal[0].at("method"), "stocs-hard");
+  EXPECT_EQ(equal[0].at("against"), "stocs");
+  EXPECT_FALSE(std::filesystem::exists(out / "budget_sweep.csv"));
+}
+
 TEST_F(EvalCliTest, BenchKillsARunPastItsTimeout) {
   const std::filesystem::path out = root_ / "bench";
   std::string log;
-  ASSERT_EQ(test::runCommand(kTool + " bench --dataset " + data() + " --out " + out.string() +
-                                 " --methods stocs --no-threshold-sweep --no-budget-sweep "
-                                 "--no-plots --no-cache --run-timeout 0.01",
-                             log),
+  ASSERT_EQ(bench("--methods stocs --no-threshold-sweep --no-budget-sweep --no-bases-sweep "
+                  "--no-plots --no-cache --run-timeout 0.01",
+                  log),
             0)
       << log;
   EXPECT_NE(log.find("stocs on data/real: FAILED: timed out (limit 0.01 s)"), std::string::npos)
@@ -340,6 +409,10 @@ TEST_F(EvalCliTest, BenchRefusesUnknownMethodsAndSources) {
   EXPECT_NE(log.find("unknown probability source 'nope'"), std::string::npos) << log;
   EXPECT_EQ(test::runCommand(base + " --thresholds 1.5", log), 2);
   EXPECT_NE(log.find("threshold 1.5 is outside (0, 1)"), std::string::npos) << log;
+  EXPECT_EQ(test::runCommand(base + " --base-counts 10,0", log), 2);
+  EXPECT_NE(log.find("base count 0 is outside [1, 1000000]"), std::string::npos) << log;
+  EXPECT_EQ(test::runCommand(base + " --methods stocs --sweep-methods ppf", log), 2);
+  EXPECT_NE(log.find("sweep method 'ppf' is not one of the methods run"), std::string::npos) << log;
   const std::string missing = (root_ / "missing").string();
   EXPECT_EQ(test::runCommand(kTool + " bench --dataset " + missing + " --out " +
                                  (root_ / "b").string() + " --no-plots",
