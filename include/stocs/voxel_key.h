@@ -3,15 +3,17 @@
 // cells: +-5 km at 5 mm cells).
 
 #include <Eigen/Core>
-#include <cmath>
 #include <cstdint>
+
+#include "stocs/fast_floor.h"
 
 namespace stocs {
 
+/// floorFast, not std::floor: the soft segment calls this for every pixel of the segment.
 inline Eigen::Vector3i voxelCell(const Eigen::Vector3f& p, float inverse_cell_size) {
-  return {static_cast<int>(std::floor(p.x() * inverse_cell_size)),
-          static_cast<int>(std::floor(p.y() * inverse_cell_size)),
-          static_cast<int>(std::floor(p.z() * inverse_cell_size))};
+  return {static_cast<int>(floorFast(p.x() * inverse_cell_size)),
+          static_cast<int>(floorFast(p.y() * inverse_cell_size)),
+          static_cast<int>(floorFast(p.z() * inverse_cell_size))};
 }
 
 inline uint64_t packVoxelCell(const Eigen::Vector3i& c) {

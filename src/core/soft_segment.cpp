@@ -54,9 +54,20 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
   }
 
   // Pass 1: group the pixels above epsilon by voxel (each pixel is its own group at voxel size 0).
+  // A voxel spans several pixels, so the key of the pixel to the left or above is usually the
+  // same: remembering their groups skips most hash lookups, each of which costs an integer
+  // division by the table's prime size. A remembered key always maps to its group.
   const float inv = params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f;
+  constexpr uint64_t kNoKey = ~uint64_t{0};  // packVoxelCell never sets the top bit
   std::unordered_map<uint64_t, int> group_of_key;
-  std::vector<int> group_of_pixel(static_cast<size_t>(cloud.width) * cloud.height, -1);
+  uint64_t left_key = kNoKey;
+  int left_group = -1;
+  std::vector<uint64_t> above_key(static_cast<size_t>(cloud.width), kNoKey);
+  std::vector<int> above_group(static_cast<size_t>(cloud.width), -1);
+  struct KeptPixel {
+    int pixel, group;
+  };
+  std::vector<KeptPixel> kept;  // in image order
   std::vector<Voxel> groups;
   for (int v = 0; v < cloud.height; ++v) {
     const float* prob_row = probability.ptr<float>(v);
@@ -65,29 +76,37 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
       const int i = v * cloud.width + u;
       if (!(p > params.min_probability) || !cloud.isValid(i)) continue;
       int g = static_cast<int>(groups.size());
-      if (inv > 0)
-        g = group_of_key.try_emplace(packVoxelCell(voxelCell(cloud.points[i], inv)), g)
-                .first->second;
+      if (inv > 0) {
+        const uint64_t key = packVoxelCell(voxelCell(cloud.points[i], inv));
+        if (key == left_key) {
+          g = left_group;
+        } else if (key == above_key[u]) {
+          g = above_group[u];
+        } else {
+          g = group_of_key.try_emplace(key, g).first->second;
+        }
+        left_key = above_key[u] = key;
+        left_group = above_group[u] = g;
+      }
       if (g == static_cast<int>(groups.size())) groups.emplace_back();
       Voxel& vox = groups[g];
       vox.sum += cloud.points[i];
       vox.probability_sum += p;
       ++vox.count;
-      group_of_pixel[i] = g;
+      kept.push_back({i, g});
     }
   }
   // Pass 2: the representative of a group is its pixel nearest the centroid, which lies on the
   // surface even when the centroid of a voxel straddling a depth edge does not.
   std::vector<int> representative(groups.size(), -1);
   std::vector<float> best_d2(groups.size(), std::numeric_limits<float>::max());
-  for (size_t i = 0; i < group_of_pixel.size(); ++i) {
-    const int g = group_of_pixel[i];
-    if (g < 0) continue;
+  for (const KeptPixel& k : kept) {
+    const Voxel& vox = groups[k.group];
     const float d2 =
-        (cloud.points[i] - groups[g].sum / static_cast<float>(groups[g].count)).squaredNorm();
-    if (d2 < best_d2[g]) {
-      best_d2[g] = d2;
-      representative[g] = static_cast<int>(i);
+        (cloud.points[k.pixel] - vox.sum / static_cast<float>(vox.count)).squaredNorm();
+    if (d2 < best_d2[k.group]) {
+      best_d2[k.group] = d2;
+      representative[k.group] = k.pixel;
     }
   }
 

@@ -1,7 +1,10 @@
 // Depth to organized cloud, probability images, and the soft segment of eqs. (1)-(3).
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <opencv2/core.hpp>
 
@@ -145,6 +148,75 @@ TEST_F(SoftSegmentTest, VoxelsAverageTheirPixels) {
     EXPECT_LT((cloud_.points[s.pixel[i]] - s.points[i]).norm(), 0.05f * std::sqrt(3.0f));
   }
   EXPECT_NEAR(std::accumulate(s.probability.begin(), s.probability.end(), 0.0), 1.0, 1e-5);
+}
+
+TEST_F(SoftSegmentTest, VoxelsMatchAPlainGroupingOnARoughSurface) {
+  // Bumps and a tilt make voxels of irregular pixel shapes, so one voxel's pixels come back after
+  // others in a row and in later rows; gaps below epsilon break runs.
+  cv::Mat depth(80, 100, CV_32FC1);
+  cv::RNG rng(7);
+  for (int v = 0; v < 80; ++v) {
+    for (int u = 0; u < 100; ++u) {
+      depth.at<float>(v, u) =
+          static_cast<float>(0.8 + 0.002 * u + 0.01 * std::sin(u * 0.7) * std::cos(v * 0.4) +
+                             rng.uniform(-0.002, 0.002));
+      prob_.at<float>(v, u) = static_cast<float>(rng.uniform(0.0, 1.0));
+    }
+  }
+  const OrganizedCloud cloud = cloudFromDepth(depth, k_, 1.0);
+  SoftSegmentParams params;
+  params.voxel_size = 0.02f;
+  const SoftSegment s = buildSoftSegment(cloud, prob_, static_cast<float>(k_.fx), params, 2);
+
+  // The same grouping written plainly: voxels by std::floor, in order of their first pixel, sums
+  // in pixel order, the representative the first pixel nearest the centroid.
+  struct Group {
+    Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+    double probability = 0;
+    int count = 0, representative = -1;
+  };
+  std::map<std::array<int, 3>, size_t> index;
+  std::vector<Group> groups;
+  std::vector<std::pair<int, size_t>> members;
+  for (int i = 0; i < 80 * 100; ++i) {
+    const float p = prob_.at<float>(i / 100, i % 100);
+    if (!(p > params.min_probability)) continue;
+    const Eigen::Vector3f& x = cloud.points[i];
+    const std::array<int, 3> cell = {static_cast<int>(std::floor(x.x() / params.voxel_size)),
+                                     static_cast<int>(std::floor(x.y() / params.voxel_size)),
+                                     static_cast<int>(std::floor(x.z() / params.voxel_size))};
+    const size_t g = index.try_emplace(cell, groups.size()).first->second;
+    if (g == groups.size()) groups.emplace_back();
+    groups[g].sum += x;
+    groups[g].probability += p;
+    ++groups[g].count;
+    members.emplace_back(i, g);
+  }
+  std::vector<float> best(groups.size(), std::numeric_limits<float>::max());
+  for (const auto& [i, g] : members) {
+    const float d2 =
+        (cloud.points[i] - groups[g].sum / static_cast<float>(groups[g].count)).squaredNorm();
+    if (d2 < best[g]) {
+      best[g] = d2;
+      groups[g].representative = i;
+    }
+  }
+  ASSERT_GT(groups.size(), 300u);
+  ASSERT_LT(groups.size(), 4000u) << "voxels should hold several pixels";
+  // The segment keeps the groups whose representative has a normal (a few at the image border
+  // have none), in the same order.
+  size_t j = 0, without_normal = 0;
+  for (const Group& group : groups) {
+    if (j == s.size() || s.pixel[j] != group.representative) {
+      ++without_normal;
+      continue;
+    }
+    EXPECT_EQ(s.points[j], group.sum / static_cast<float>(group.count)) << j;
+    EXPECT_EQ(s.confidence[j], static_cast<float>(group.probability / group.count)) << j;
+    ++j;
+  }
+  EXPECT_EQ(j, s.size());
+  EXPECT_LT(without_normal, groups.size() / 50);
 }
 
 TEST_F(SoftSegmentTest, PixelsWithoutDepthAreLeftOutAndEmptyIsFine) {
