@@ -22,7 +22,7 @@ struct OrganizedNormalParams {
   /// Metres; neighbours farther than this from the centre pixel are ignored. Far from the camera it
   /// grows to 2.5 pixel footprints so that a normal always has neighbours to rest on.
   float radius = 0.01f;
-  int samples_per_axis = 9;  ///< window samples per image axis (a stride keeps the cost bounded)
+  int samples_per_axis = 9;  ///< at most this many window samples per image axis (a stride)
   int min_neighbours = 6;    ///< fewer valid neighbours give no normal
 };
 

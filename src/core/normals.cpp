@@ -44,7 +44,10 @@ Eigen::Vector3f organizedNormal(const OrganizedCloud& cloud, int index, float fo
   const int u0 = index % cloud.width, v0 = index / cloud.width;
   const float radius = std::max(params.radius, 2.5f * p.z() / focal_px);
   const int reach = std::max(1, static_cast<int>(std::ceil(radius * focal_px / p.z())));
-  const int step = std::max(1, 2 * reach / std::max(1, params.samples_per_axis - 1));
+  // Rounded up, so that a window holds at most samples_per_axis samples per axis (rounded down,
+  // a reach of 7 pixels took 15 x 15 samples instead of 8 x 8).
+  const int intervals = std::max(1, params.samples_per_axis - 1);
+  const int step = std::max(1, (2 * reach + intervals - 1) / intervals);
   const float r2 = radius * radius;
 
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();

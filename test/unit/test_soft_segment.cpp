@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "stocs/error.h"
+#include "stocs/normals.h"
 #include "stocs/organized_cloud.h"
 #include "stocs/probability_image.h"
 #include "stocs/soft_segment.h"
@@ -63,6 +64,23 @@ TEST(OrganizedCloud, IntrinsicsAreRecoveredFromTheCloud) {
   EXPECT_NEAR(r.cx, k.cx, 1e-2);
   EXPECT_NEAR(r.cy, k.cy, 1e-2);
   EXPECT_THROW(intrinsicsFromCloud(OrganizedCloud(100, 80)), InputError);
+}
+
+TEST(OrganizedNormal, TheWindowHoldsAtMostSamplesPerAxisSquared) {
+  CameraIntrinsics k = smallCamera();
+  k.fx = k.fy = 525;
+  // 1 cm at 0.8077 m spans 6.5 pixels: a reach of 7 pixels, which an 8-pixel interval divides
+  // into steps of 2 (8 samples per axis), not 1 (15).
+  const OrganizedCloud wall =
+      cloudFromDepth(cv::Mat(80, 100, CV_32FC1, cv::Scalar(0.8077)), k, 1.0);
+  OrganizedNormalParams params;
+  params.min_neighbours = params.samples_per_axis * params.samples_per_axis + 1;
+  const int centre = 40 * 100 + 50;
+  EXPECT_FALSE(organizedNormal(wall, centre, 525, params).allFinite());
+  params.min_neighbours = 20;  // the samples within the radius: 32 of the 8 x 8
+  const Eigen::Vector3f n = organizedNormal(wall, centre, 525, params);
+  ASSERT_TRUE(n.allFinite());
+  EXPECT_LT(n.z(), -0.999f);
 }
 
 TEST(ProbabilityImage, ConvertsTheUsualEncodings) {
