@@ -20,6 +20,12 @@ double quantile(std::vector<double> values, double q) {
   return values[lo] + (values[hi] - values[lo]) * f;
 }
 
+size_t firstIndexReachingFromThereOn(const std::vector<double>& scores, double target) {
+  size_t first = scores.size();
+  while (first > 0 && scores[first - 1] >= target) --first;
+  return first;
+}
+
 MetricSummary summarize(const std::vector<TargetErrors>& errors) {
   MetricSummary s;
   s.targets = errors.size();

@@ -39,6 +39,14 @@ TEST(Quantile, LinearBetweenOrderStatistics) {
   EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
 }
 
+TEST(FirstIndexReachingFromThereOn, SkipsAnEarlyLuckyScore) {
+  EXPECT_EQ(firstIndexReachingFromThereOn({0.5, 0.9, 0.95}, 0.9), 1u);
+  EXPECT_EQ(firstIndexReachingFromThereOn({0.95, 0.8, 0.92, 0.97}, 0.9), 2u);  // not 0
+  EXPECT_EQ(firstIndexReachingFromThereOn({0.95, 0.97}, 0.95), 0u);            // equal reaches
+  EXPECT_EQ(firstIndexReachingFromThereOn({0.99, 0.8}, 0.9), 2u);              // the last is below
+  EXPECT_EQ(firstIndexReachingFromThereOn({}, 0.9), 0u);
+}
+
 TEST(MetricSummary, ByHand) {
   const MetricSummary s = summarize({
       found(5, 5, 5, 10, false),   // every criterion met

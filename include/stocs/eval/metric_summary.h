@@ -33,4 +33,9 @@ MetricSummary summarize(const std::vector<TargetErrors>& errors);
 /// quantile that touches one is infinite. NaN for an empty list.
 double quantile(std::vector<double> values, double q);
 
+/// For a setting swept in increasing order with `scores` (e.g. ADD-S AUC at more and more bases):
+/// the first index from which on every score is at least `target`, or scores.size() when the last
+/// one is below it. A single lucky score early in a noisy sweep does not count.
+size_t firstIndexReachingFromThereOn(const std::vector<double>& scores, double target);
+
 }  // namespace stocs
