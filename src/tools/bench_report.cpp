@@ -244,6 +244,13 @@ ReportTable equalAccuracyTable(const BenchData& d) {
   const Scope scope = widest(d);
   const auto median = [](const std::vector<double>& v) { return quantile(v, 0.5); };
   for (const std::string& method : d.swept_methods) {
+    // The method's sweep, pooled once for every method it is compared with.
+    std::vector<Pool> swept;
+    std::vector<double> aucs;
+    for (double n : d.base_counts) {
+      swept.push_back(pool(d, method, Sweep::kBases, n, scope));
+      aucs.push_back(summarize(swept.back().errors).adds_auc);
+    }
     for (const std::string& against : d.methods) {
       if (against == method) continue;
       const Pool other = pool(d, against, Sweep::kNone, 0, scope);
@@ -251,16 +258,12 @@ ReportTable equalAccuracyTable(const BenchData& d) {
       std::vector<Cell> row = {textCell(method), textCell(against), percentCell(target_auc),
                                numberCell(median(other.seconds), 3),
                                numberCell(median(other.cpu_seconds), 3)};
-      std::vector<double> aucs;
-      for (double n : d.base_counts) {
-        aucs.push_back(summarize(pool(d, method, Sweep::kBases, n, scope).errors).adds_auc);
-      }
       const size_t k = firstIndexReachingFromThereOn(aucs, target_auc);
       if (k == aucs.size()) {
         row.push_back(textCell("none"));
         for (int i = 0; i < 5; ++i) row.push_back(numberCell(std::nan(""), 0));
       } else {
-        const Pool p = pool(d, method, Sweep::kBases, d.base_counts[k], scope);
+        const Pool& p = swept[k];
         row.push_back(textCell(fmt::format("{:g}", d.base_counts[k])));
         row.push_back(percentCell(aucs[k]));
         row.push_back(numberCell(median(p.seconds), 3));
