@@ -48,9 +48,18 @@ Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment
 }
 
 Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isometry3f& pose,
-                                     int region) const {
+                                     int region, const LcpScorer* near) const {
   const SoftSegment& segment = segment_;
   auto inRegion = [&](int i) { return region < 0 || segment.region[i] == region; };
+  if (near && (&near->segment() != &segment || near->params().distance > params_.max_distance)) {
+    near = nullptr;
+  }
+  // Most correspondences of a pose close to its optimum lie within delta_s: those take the short
+  // lists of the scorer's grid, and only the others the long lists of the correspondence radius.
+  auto closest = [&](const Eigen::Vector3f& p) {
+    const int s = near ? near->closest(p, region) : -1;
+    return s >= 0 ? s : grid_.closest(p, inRegion);
+  };
   Eigen::Isometry3f current = pose, before_last = pose;
   for (int it = 0; it < params_.iterations; ++it) {
     // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w and a
@@ -62,7 +71,7 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
       const Eigen::Vector3f p = current * model.points[i];
       const Eigen::Vector3f n = current.linear() * model.normals[i];
       if (n.dot(p) >= 0) continue;  // faces away from the camera: cannot be observed
-      const int s = grid_.closest(p, inRegion);
+      const int s = closest(p);
       if (s < 0 || n.dot(segment.normals[s]) < cos_normal_) continue;
       const Eigen::Vector3d ns = segment.normals[s].cast<double>();
       const Eigen::Vector3d pd = p.cast<double>();

@@ -61,7 +61,7 @@ Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefine
   Hypothesis out = h;
   out.polished = true;
   if (icp) {
-    const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region);
+    const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region, &scorer);
     const float score = scorer.score(model, pose, h.region);
     if (score >= 0.9f * h.score) {
       out.pose = pose;

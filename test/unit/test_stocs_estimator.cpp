@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 
 #include "stocs/error.h"
+#include "stocs/icp_refiner.h"
 #include "stocs/pipeline.h"
 #include "stocs/pose_metrics.h"
 #include "test_support.h"
@@ -135,6 +136,26 @@ TEST_F(StocsEstimatorTest, RefinementMovesTowardTheTruthAndKeepsTheObjective) {
   EXPECT_FALSE(raw.refined);
   EXPECT_GE(refined.lcp.score, 0.9f * raw.lcp.score);  // the divergence guard
   EXPECT_LE(addsOf(refined), addsOf(raw) + 1e-4);      // and it moves toward the truth
+}
+
+TEST_F(StocsEstimatorTest, IcpThroughTheScorersGridRefinesExactlyAsWithoutIt) {
+  const PipelineParams params;
+  const SoftSegment seg = segment(params);
+  const IcpRefiner icp(seg, params.stocs.icp);
+  // A start a few millimetres and degrees off: most correspondences lie within delta_s, some
+  // beyond it.
+  Eigen::Isometry3f start = truth_;
+  start.rotate(Eigen::AngleAxisf(0.05f, Eigen::Vector3f(1, 2, 3).normalized()));
+  start.pretranslate(Eigen::Vector3f(0.004f, -0.003f, 0.002f));
+  const Eigen::Isometry3f alone = icp.refine(model_.model, start, -1);
+  ASSERT_FALSE(alone.isApprox(start));
+  const LcpScorer near(seg, params.stocs.lcp);
+  EXPECT_EQ(icp.refine(model_.model, start, -1, &near).matrix(), alone.matrix());
+  // A scorer whose delta_s exceeds the correspondence radius would admit farther points: ignored.
+  LcpParams wide = params.stocs.lcp;
+  wide.distance = 2.5f * params.stocs.icp.max_distance;
+  const LcpScorer too_wide(seg, wide);
+  EXPECT_EQ(icp.refine(model_.model, start, -1, &too_wide).matrix(), alone.matrix());
 }
 
 TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
