@@ -20,10 +20,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Hypotheses of a base carried from the first half of the head to the second, per hypothesis
-/// finished: the first half (often some 20 scene lookups) only has to keep the best few in, and
-/// on planar bases it drops about three quarters of the hypotheses.
-constexpr size_t kHeadRoundWidth = 4;
+/// The rounds in which the hypotheses of a base are scored on their heads: after each share of the
+/// head, the best `width` x finished_per_base of them go on (after the last, to be finished). An
+/// early round (a quarter of the head is often some 10 scene lookups) only has to keep the best
+/// few in, and on planar bases the rounds drop most of the hypotheses long before the head's end.
+struct HeadRound {
+  float share;
+  size_t width;
+};
+constexpr HeadRound kHeadRounds[] = {{0.25f, 8}, {0.5f, 4}, {1.0f, 1}};
 
 double secondsSince(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -297,11 +302,11 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
         scored.push_back(placed);
       }
       out.hypotheses = static_cast<long>(scored.size());
-      // Heads in two rounds: every hypothesis on the first half of the head, the most promising
-      // kHeadRoundWidth x finished_per_base of them on the rest. Then the best heads are finished,
-      // best first: the base's best is found early, and the coarse checks and the exact bound drop
-      // the others soon after their head. Every (partial) head covers the same model points, so
-      // their objectives compare directly.
+      // Heads in rounds (kHeadRounds): every hypothesis on the first share of the head, the most
+      // promising of them on the next, and so on to the whole head. Then the best heads are
+      // finished, best first: the base's best is found early, and the coarse checks and the exact
+      // bound drop the others soon after their head. Every (partial) head covers the same model
+      // points, so their objectives compare directly.
       heads.assign(scored.size(), PartialScore{});
       order.resize(scored.size());
       std::iota(order.begin(), order.end(), 0u);
@@ -314,10 +319,12 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
                           });
         order.resize(n);
       };
-      for (uint32_t h : order) scorer.extendHead(model, scored[h].pose, out.region, heads[h], 0.5f);
-      keepBest(kHeadRoundWidth * finished);
-      for (uint32_t h : order) scorer.extendHead(model, scored[h].pose, out.region, heads[h], 1.0f);
-      keepBest(finished);
+      for (const HeadRound& round : kHeadRounds) {
+        for (uint32_t h : order) {
+          scorer.extendHead(model, scored[h].pose, out.region, heads[h], round.share);
+        }
+        keepBest(round.width * finished);
+      }
       const size_t finishing = order.size();
       out.finished = static_cast<long>(finishing);
       for (uint32_t h : order) {
