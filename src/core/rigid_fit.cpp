@@ -7,13 +7,10 @@ namespace {
 
 /// Entry (i, j) of the adjugate of s: the cofactor of s(j, i), by the 3x3 rule of Sarrus.
 double adjugateEntry(const Eigen::Matrix4d& s, int i, int j) {
-  int rows[3], cols[3];
-  for (int r = 0, n = 0; r < 4; ++r) {
-    if (r != j) rows[n++] = r;
-  }
-  for (int c = 0, n = 0; c < 4; ++c) {
-    if (c != i) cols[n++] = c;
-  }
+  // The indices other than k, from a table: selecting them in loops cost more than the products.
+  static constexpr int kOthers[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  const int* rows = kOthers[j];
+  const int* cols = kOthers[i];
   const auto e = [&](int r, int c) { return s(rows[r], cols[c]); };
   const double det = e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1)) -
                      e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0)) +
