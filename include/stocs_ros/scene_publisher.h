@@ -2,11 +2,14 @@
 // Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
 // with camera_info, the colour image, per-object probability images (or one multi-channel image, as
 // the estimator's config says), the boundary map, and the ground truth as TF frames gt_<object>.
-// Every message of one frame carries the same stamp (the time it is published).
+// Every message of one frame carries the same stamp: the time it is published, taken once all of
+// them are built, so that latencies measured from it (scripts/bench_latency.sh) are those of the
+// receiver and not of this player's own conversions.
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -30,8 +33,12 @@ class ScenePublisher {
   };
 
   void onTimer(const ros::TimerEvent&);
+  /// Sets the stamp of a built message and publishes it.
+  using Send = std::function<void(const ros::Time& stamp)>;
+
   void publish(const FrameRef& ref, const BopFrame& frame);
-  void publishProbabilities(const BopFrame& frame, const std_msgs::Header& header);
+  void addProbabilities(const BopFrame& frame, const std_msgs::Header& header,
+                        std::vector<Send>& sends);
   void publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header);
   std::string objectName(int obj_id) const;
 

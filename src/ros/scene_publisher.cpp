@@ -139,29 +139,48 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
   }
 }
 
+namespace {
+
+/// A Send that stamps `message` (a shared pointer) and publishes it on `publisher`.
+template <class MessagePtr>
+std::function<void(const ros::Time&)> sending(ros::Publisher& publisher, MessagePtr message) {
+  return [&publisher, message](const ros::Time& stamp) {
+    message->header.stamp = stamp;
+    publisher.publish(message);
+  };
+}
+
+}  // namespace
+
 void ScenePublisher::publish(const FrameRef& ref, const BopFrame& frame) {
   std_msgs::Header header;
-  header.stamp = ros::Time::now();
   header.frame_id = frame_id_;
+  std::vector<Send> sends;
   auto cloud = boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(frame.cloud, frame.bgr));
   cloud->header = header;
-  cloud_.publish(cloud);
-  depth_.publish(cv_bridge::CvImage(header, "32FC1", frame.depth).toImageMsg());
-  camera_info_.publish(cameraInfo(frame.camera, header));
-  if (!frame.bgr.empty()) rgb_.publish(cv_bridge::CvImage(header, "bgr8", frame.bgr).toImageMsg());
-  publishProbabilities(frame, header);
+  sends.push_back(sending(cloud_, cloud));
+  sends.push_back(sending(depth_, cv_bridge::CvImage(header, "32FC1", frame.depth).toImageMsg()));
+  sends.push_back(sending(
+      camera_info_, boost::make_shared<sensor_msgs::CameraInfo>(cameraInfo(frame.camera, header))));
+  if (!frame.bgr.empty()) {
+    sends.push_back(sending(rgb_, cv_bridge::CvImage(header, "bgr8", frame.bgr).toImageMsg()));
+  }
+  addProbabilities(frame, header, sends);
   if (publish_boundary_) {
     // A frame without a map gets an all-interior one, so that a node waiting for boundaries still
     // receives complete frames.
     const cv::Mat boundary = frame.boundary.empty()
                                  ? cv::Mat(frame.depth.size(), CV_8UC1, cv::Scalar(255))
                                  : frame.boundary;
-    boundary_.publish(cv_bridge::CvImage(header, "mono8", boundary).toImageMsg());
+    sends.push_back(sending(boundary_, cv_bridge::CvImage(header, "mono8", boundary).toImageMsg()));
   }
+  header.stamp = ros::Time::now();
+  for (const Send& send : sends) send(header.stamp);
   publishGroundTruth(ref, header);
 }
 
-void ScenePublisher::publishProbabilities(const BopFrame& frame, const std_msgs::Header& header) {
+void ScenePublisher::addProbabilities(const BopFrame& frame, const std_msgs::Header& header,
+                                      std::vector<Send>& sends) {
   const bool multichannel = config_.input.probability == ProbabilitySource::kMultichannel;
   const auto [depth, encoding] =
       probabilityFormat(probability_encoding_, multichannel ? config_.input.channels.size() : 1);
@@ -174,7 +193,8 @@ void ScenePublisher::publishProbabilities(const BopFrame& frame, const std_msgs:
   }
   if (!multichannel) {
     for (size_t i = 0; i < encoded.size(); ++i) {
-      probabilities_[i].publish(cv_bridge::CvImage(header, encoding, encoded[i]).toImageMsg());
+      sends.push_back(sending(probabilities_[i],
+                              cv_bridge::CvImage(header, encoding, encoded[i]).toImageMsg()));
     }
     return;
   }
@@ -185,7 +205,8 @@ void ScenePublisher::publishProbabilities(const BopFrame& frame, const std_msgs:
   }
   cv::Mat merged;
   cv::merge(channels, merged);
-  multichannel_.publish(cv_bridge::CvImage(header, encoding, merged).toImageMsg());
+  sends.push_back(
+      sending(multichannel_, cv_bridge::CvImage(header, encoding, merged).toImageMsg()));
 }
 
 void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header) {
