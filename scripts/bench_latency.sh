@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Node latency benchmark (issue 6): a generated 640x480 scene of three objects played at RATE Hz
 # through the StoCS node for FRAMES frames; the demo recorder prints the latency from each input
-# stamp to the node's estimates (~objects, published right after TF), p50 and p95. It runs twice:
+# stamp (set by the player once a frame's messages are built, right before it publishes them) to
+# the node's estimates (~objects, published right after TF), p50 and p95. It runs twice:
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
 # in one manager (passed as shared pointers).
 #   scripts/bench_latency.sh [FRAMES [RATE]]       (defaults: 60 frames at 5 Hz)
