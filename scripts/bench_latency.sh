@@ -2,7 +2,8 @@
 # Node latency benchmark (issue 6): a generated 640x480 scene of three objects played at RATE Hz
 # through the StoCS node for FRAMES frames; the demo recorder prints the latency from each input
 # stamp (set by the player once a frame's messages are built, right before it publishes them) to
-# the node's estimates (~objects, published right after TF), p50 and p95. It runs twice:
+# the node's estimates (~objects, published right after TF), p50 and p95, with the share of CPU time
+# the hypervisor stole during the run (it stretches every latency on a shared VM). It runs twice:
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
 # in one manager (passed as shared pointers).
 #   scripts/bench_latency.sh [FRAMES [RATE]]       (defaults: 60 frames at 5 Hz)
@@ -28,7 +29,15 @@ for line in open(sys.argv[1]):
         continue
     print(line, end="")
 PY
+# Busy and stolen CPU time so far (jiffies, all cores): on a virtual machine the hypervisor's steal
+# time stretches every latency, so each result says how much of it there was.
+cpu_times() {
+  local _ user nice system idle iowait irq softirq steal
+  read -r _ user nice system idle iowait irq softirq steal _ < /proc/stat
+  echo "$((user + nice + system + irq + softirq)) $steal"
+}
 for mode in nodes nodelets; do
+  read -r busy0 steal0 <<< "$(cpu_times)"
   nodelet=false
   [ "$mode" = nodelets ] && nodelet=true
   port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
@@ -38,6 +47,8 @@ for mode in nodes nodelets; do
     nodelet:="$nodelet" > "$out/roslaunch-$mode.log" 2>&1 || true
   line=$(grep -E "^latency " "$out/roslaunch-$mode.log") ||
     { echo "bench_latency: no result as $mode (log: $out/roslaunch-$mode.log)" >&2; exit 1; }
-  echo "$mode: $line"
+  read -r busy1 steal1 <<< "$(cpu_times)"
+  stolen=$((steal1 - steal0))
+  echo "$mode: $line; steal $((100 * stolen / (busy1 - busy0 + stolen + 1)))% of the busy time"
 done
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
