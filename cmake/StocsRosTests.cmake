@@ -27,11 +27,13 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   COMMAND stocs_ros_make_test_data ${STOCS_ROS_TEST_DATA}
   DEPENDS stocs_ros_make_test_data
   COMMENT "Writing the generated dataset of the ROS tests")
-# The demo's scene (scripts/demo.sh makes the same one), written by the CLI as a user would.
+# The demo's scene (scripts/demo.sh makes the same one), written by the CLI as a user would. After
+# the writer above, which empties the whole folder first: side by side (make -j2) it once deleted
+# the scene's models/ while the CLI was writing them.
 add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
   COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/synth_scene --objects 6 --distractors 2 --seed 1
     --quiet
-  DEPENDS stocs
+  DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   COMMENT "Generating the cluttered scene of the ROS tests")
 add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json)
