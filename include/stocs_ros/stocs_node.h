@@ -17,6 +17,7 @@
 #include <std_srvs/Trigger.h>
 #include <stocs_ros/Estimate.h>
 
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -69,7 +70,9 @@ class StocsNode {
   FrameResult process(const QueuedJob& queued);
   void onBackgroundError(std::exception_ptr error);
   void publishStatistics();
-  EstimationJob serviceJob(Estimate::Request& request, const EstimationSetup& setup);
+  /// Validates an ~estimate request and queues its job on the worker.
+  std::future<FrameResult> requestEstimation(Estimate::Request& request,
+                                             const std::shared_ptr<const EstimationSetup>& setup);
   bool onEstimate(Estimate::Request& request, Estimate::Response& response);
   bool onReload(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
 

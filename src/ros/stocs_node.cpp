@@ -253,8 +253,9 @@ void StocsNode::publishStatistics() {
   statistics_pub_.publish(msg);
 }
 
-EstimationJob StocsNode::serviceJob(Estimate::Request& request, const EstimationSetup& setup) {
-  const NodeConfig& config = setup.config;
+std::future<FrameResult> StocsNode::requestEstimation(
+    Estimate::Request& request, const std::shared_ptr<const EstimationSetup>& setup) {
+  const NodeConfig& config = setup->config;
   EstimationJob job;
   for (const std::string& name : request.objects) {
     const int i = config.objectIndex(name);
@@ -277,13 +278,15 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
     if (!request.probabilities.empty()) {
       throw InputError("probabilities were given without a cloud");
     }
+    // Taken and queued under the synchronizer's lock: a frame matched between the two could start
+    // first, publish a newer stamp, and this result would then be too old for the topics.
     std::lock_guard<std::mutex> lock(sync_mutex_);
     if (!latest_frame_) {
       throw InputError(
           "no synchronized input frame yet; publish the inputs or pass a cloud and probabilities");
     }
     job.frame = *latest_frame_;
-    return job;
+    return worker_->request({std::move(job), setup, true});
   }
   if (request.probabilities.size() != job.objects.size()) {
     throw InputError(
@@ -300,14 +303,13 @@ EstimationJob StocsNode::serviceJob(Estimate::Request& request, const Estimation
   if (!request.boundary.data.empty() || request.boundary.width > 0) {
     job.frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
   }
-  return job;
+  return worker_->request({std::move(job), setup, true});
 }
 
 bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
   const std::shared_ptr<const EstimationSetup> current = setup();
   try {
-    const FrameResult result =
-        worker_->request({serviceJob(request, *current), current, true}).get();
+    const FrameResult result = requestEstimation(request, current).get();
     response.result = toObjectPoseArray(result, *current);
     response.success = true;
     response.message = describeOutcome(result, current->config);
