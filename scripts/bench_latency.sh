@@ -6,12 +6,14 @@
 # the hypervisor stole during the run (it stretches every latency on a shared VM). It runs twice:
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
 # in one manager (passed as shared pointers).
-#   scripts/bench_latency.sh [FRAMES [RATE]]       (defaults: 60 frames at 5 Hz)
+#   scripts/bench_latency.sh [FRAMES [RATE [BASES]]]   (defaults: 60 frames at 5 Hz, the
+#                                                   configuration's bases, i.e. 100)
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 frames=${1:-60}
 rate=${2:-5}
+bases=${3:-}
 set +u
 source "$WS/devel/setup.bash"
 set -u
@@ -29,6 +31,9 @@ for line in open(sys.argv[1]):
         continue
     print(line, end="")
 PY
+if [ -n "$bases" ]; then
+  printf 'estimation:\n  stocs:\n    bases: %s\n' "$bases" >> "$out/config.yaml"
+fi
 # Busy and stolen CPU time so far (jiffies, all cores): on a virtual machine the hypervisor's steal
 # time stretches every latency, so each result says how much of it there was.
 cpu_times() {
