@@ -37,8 +37,8 @@ fi
 # Busy and stolen CPU time so far (jiffies, all cores): on a virtual machine the hypervisor's steal
 # time stretches every latency, so each result says how much of it there was.
 cpu_times() {
-  local _ user nice system idle iowait irq softirq steal
-  read -r _ user nice system idle iowait irq softirq steal _ < /proc/stat
+  local _ user nice system irq softirq steal
+  read -r _ user nice system _ _ irq softirq steal _ < /proc/stat  # idle and iowait skipped
   echo "$((user + nice + system + irq + softirq)) $steal"
 }
 for mode in nodes nodelets; do
