@@ -50,14 +50,15 @@ struct DenseCells {
 template <class CellsOf>
 void sortIntoCells(size_t cells, uint32_t items, CellsOf&& cellsOf, std::vector<uint32_t>& start,
                    std::vector<uint32_t>& list) {
-  start.assign(cells + 1, 0);
-  for (uint32_t i = 0; i < items; ++i) cellsOf(i, [&](size_t c) { ++start[c + 1]; });
-  for (size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
-  list.resize(start[cells]);
-  for (uint32_t i = 0; i < items; ++i) cellsOf(i, [&](size_t c) { list[start[c]++] = i; });
-  // Each fill cursor ended at the next cell's start: shift back by one cell.
-  for (size_t c = cells; c > 0; --c) start[c] = start[c - 1];
-  start[0] = 0;
+  // Counts go two cells up, so that after the prefix sum start[c + 1] is where cell c begins: the
+  // fill advances it to where cell c ends, which is start[c + 1] of the result, with no pass to
+  // shift the cursors back.
+  start.assign(cells + 2, 0);
+  for (uint32_t i = 0; i < items; ++i) cellsOf(i, [&](size_t c) { ++start[c + 2]; });
+  for (size_t c = 2; c <= cells + 1; ++c) start[c] += start[c - 1];
+  list.resize(start[cells + 1]);
+  for (uint32_t i = 0; i < items; ++i) cellsOf(i, [&](size_t c) { list[start[c + 1]++] = i; });
+  start.pop_back();
 }
 
 }  // namespace stocs
