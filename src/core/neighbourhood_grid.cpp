@@ -123,10 +123,10 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     }
   };
   // Each point's cells once, for both passes of the sort: the geometry above costs more than
-  // reading them back. Fewer than 2^32 cells: at most kCellsPerPoint per point.
+  // reading them back. Fewer than 2^32 cells: at most kCellsPerPoint per point. About 21 cells per
+  // point on BENCHMARKS.md's segments, hence the reserve.
   std::vector<uint32_t> near_cells, first_near(n + 1, 0);
-  near_cells.reserve(static_cast<size_t>(n) *
-                     32);  // about 21 per point on BENCHMARKS.md's segments
+  near_cells.reserve(static_cast<size_t>(n) * 32);
   for (uint32_t j = 0; j < n; ++j) {
     cellsNear(j, [&](size_t c) { near_cells.push_back(static_cast<uint32_t>(c)); });
     first_near[j + 1] = static_cast<uint32_t>(near_cells.size());
