@@ -102,6 +102,10 @@ TEST(PointGrid, ASparseWideSetGetsLargerCellsAndStaysExact) {
 
 TEST(PointGrid, RefusesNonFinitePointsAndCells) {
   EXPECT_THROW(PointGrid({{0, 0, 0}, {NAN, 0, 0}}, 0.01f), std::invalid_argument);
+  // In any coordinate and any place, also the first point (which seeds the bounding box).
+  EXPECT_THROW(PointGrid({{0, 0, NAN}, {0, 0, 0}}, 0.01f), std::invalid_argument);
+  EXPECT_THROW(PointGrid({{0, 0, 0}, {0, 0, 0}, {0, -INFINITY, 0}}, 0.01f), std::invalid_argument);
+  EXPECT_THROW(PointGrid({{0, 0, 0}, {0, 0, INFINITY}}, 0.01f), std::invalid_argument);
   EXPECT_THROW(PointGrid({{0, 0, 0}}, 0.0f), std::invalid_argument);
 }
 
