@@ -12,7 +12,9 @@ shift || true
 OUT="$REPO/build/fuzz"
 mkdir -p "$OUT"
 
+# -O1 with line tables only, as OSS-Fuzz builds its targets: half the compile time of -O2 -g.
 cmake -S "$REPO" -B "$OUT" -DSTOCS_WITH_ROS=OFF -DSTOCS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$OUT.cmake.log" 2>&1 ||
   { cat "$OUT.cmake.log"; exit 1; }
 cmake --build "$OUT" -j"$JOBS" --target fuzz
