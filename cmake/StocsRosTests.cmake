@@ -11,7 +11,7 @@ roslaunch_add_file_check(launch)
 file(GLOB STOCS_ROS_UNIT_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/ros/unit/test_*.cpp)
 foreach(src ${STOCS_ROS_UNIT_TESTS})
   get_filename_component(name ${src} NAME_WE)
-  stocs_add_gtest(ros_${name} ${src} ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
+  stocs_add_gtest(ros_${name} ${src})
   target_link_libraries(ros_${name} stocs_ros)
 endforeach()
 
