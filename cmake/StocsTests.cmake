@@ -42,10 +42,9 @@ function(stocs_add_gtest name)
   endif()
   target_link_libraries(${name} stocs_test_support stocs_core stocs_methods)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/src/core)
-  target_compile_definitions(${name} PRIVATE
-    STOCS_DATASETS_DEFAULT="${STOCS_DATASETS_DIR}"
-    STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
-    STOCS_TOOL_PATH="$<TARGET_FILE:stocs>")
+  # The data folder and scratch folder are compiled into stocs_test_support; the CLI tests need the
+  # tool's path.
+  target_compile_definitions(${name} PRIVATE STOCS_TOOL_PATH="$<TARGET_FILE:stocs>")
   add_dependencies(${name} stocs)
 endfunction()
 
