@@ -69,12 +69,13 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
   };
   std::vector<KeptPixel> kept;  // in image order
   std::vector<Voxel> groups;
+  const float threshold = params.min_probability;
   for (int v = 0; v < cloud.height; ++v) {
     const float* prob_row = probability.ptr<float>(v);
-    for (int u = 0; u < cloud.width; ++u) {
+    auto visit = [&](int u) {
       const float p = prob_row[u];
       const int i = v * cloud.width + u;
-      if (!(p > params.min_probability) || !cloud.isValid(i)) continue;
+      if (!(p > threshold) || !cloud.isValid(i)) return;
       int g = static_cast<int>(groups.size());
       if (inv > 0) {
         const uint64_t key = packVoxelCell(voxelCell(cloud.points[i], inv));
@@ -94,7 +95,20 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
       vox.probability_sum += p;
       ++vox.count;
       kept.push_back({i, g});
+    };
+    // Most of an image is background, below epsilon: blocks of pixels with none above it are
+    // skipped by one vector test (a test and branch per pixel cost 10 instructions, 3 M per
+    // 640x480 image, a fifth of the cat's soft segment).
+    constexpr int kBlock = 16;
+    int u = 0;
+    for (; u + kBlock <= cloud.width; u += kBlock) {
+      int any = 0;
+#pragma omp simd reduction(| : any)
+      for (int k = 0; k < kBlock; ++k) any |= prob_row[u + k] > threshold;
+      if (!any) continue;
+      for (int k = 0; k < kBlock; ++k) visit(u + k);
     }
+    for (; u < cloud.width; ++u) visit(u);
   }
   // Pass 2: the representative of a group is its pixel nearest the centroid, which lies on the
   // surface even when the centroid of a voxel straddling a depth edge does not.

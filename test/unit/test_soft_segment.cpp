@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "stocs/error.h"
 #include "stocs/normals.h"
@@ -87,6 +88,11 @@ TEST(ProbabilityImage, ConvertsTheUsualEncodings) {
   cv::Mat u16(2, 2, CV_16UC1, cv::Scalar(5000));
   EXPECT_FLOAT_EQ(toProbabilityImage(u16).at<float>(1, 1), 0.5f);
   EXPECT_FLOAT_EQ(toProbabilityImage(u16, 5000).at<float>(0, 0), 1.0f);
+  // Float rounding just outside [0, 1] is clamped, in every lane of a wide row.
+  cv::Mat rounded(1, 37, CV_32FC1, cv::Scalar(-1e-4));
+  rounded(cv::Rect(18, 0, 19, 1)) = 1.0001;
+  const cv::Mat clamped = toProbabilityImage(rounded);
+  for (int u = 0; u < 37; ++u) EXPECT_EQ(clamped.at<float>(0, u), u < 18 ? 0.0f : 1.0f) << u;
   cv::Mat u8(2, 2, CV_8UC1, cv::Scalar(255));
   EXPECT_FLOAT_EQ(toProbabilityImage(u8).at<float>(0, 1), 1.0f);
   cv::Mat f32(2, 2, CV_32FC1, cv::Scalar(0.25));
@@ -107,6 +113,18 @@ TEST(ProbabilityImage, RejectsBadImagesWithTheReason) {
   }
   cv::Mat nan(2, 2, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
   EXPECT_THROW(toProbabilityImage(nan), InputError);
+  // Rows wider than the vector loops' lanes: a bad value in their body and in their tail.
+  for (const int u : {21, 36}) {
+    cv::Mat wide(3, 37, CV_32FC1, cv::Scalar(0.5));
+    wide.at<float>(2, u) = u == 21 ? -0.5f : std::numeric_limits<float>::quiet_NaN();
+    try {
+      toProbabilityImage(wide);
+      ADD_FAILURE() << "no error for the value at u=" << u;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("(u=" + std::to_string(u) + ", v=2)"), std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_THROW(toProbabilityImage(cv::Mat(2, 2, CV_16UC1, cv::Scalar(10001))), InputError);
 }
 
@@ -134,6 +152,23 @@ TEST_F(SoftSegmentTest, KeepsPixelsAboveEpsilonWithNormalisedProbabilities) {
     EXPECT_GE(s.pixel[i] % 100, 50);
     EXPECT_FLOAT_EQ(s.confidence[i], 0.8f);
     EXPECT_LT(s.normals[i].z(), -0.999f) << "wall normal must face the camera";
+  }
+}
+
+TEST_F(SoftSegmentTest, IsolatedPixelsAnywhereInARowAreKept) {
+  // Single pixels above epsilon on background, at block edges and in a row's tail (background
+  // blocks are skipped as a whole, so a block with one pixel above epsilon must still be seen).
+  cv::Mat prob(80, 100, CV_32FC1, cv::Scalar(0.0));
+  const std::vector<int> columns = {0, 15, 16, 31, 47, 63, 95, 96, 99};
+  for (size_t k = 0; k < columns.size(); ++k)
+    prob.at<float>(static_cast<int>(10 + 5 * k), columns[k]) = 0.7f;
+  SoftSegmentParams params;
+  params.voxel_size = 0;
+  params.normals.min_neighbours = 3;
+  const SoftSegment s = buildSoftSegment(cloud_, prob, static_cast<float>(k_.fx), params);
+  ASSERT_EQ(s.size(), columns.size());
+  for (size_t k = 0; k < columns.size(); ++k) {
+    EXPECT_EQ(s.pixel[k], static_cast<int>(10 + 5 * k) * 100 + columns[k]);
   }
 }
 
