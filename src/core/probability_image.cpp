@@ -37,13 +37,13 @@ cv::Mat toProbabilityImage(const cv::Mat& image, double uint16_scale) {
   // Float maps may overshoot by rounding; integer maps are exact, so any value above the scale is
   // an encoding error.
   const float tolerance = image.depth() == CV_32F || image.depth() == CV_64F ? 1e-3f : 1e-6f;
-  // The range test and the clamp are vector loops (a test and branch per pixel cost 10
-  // instructions, 3 M per 640x480 image); a row that fails is scanned again for the message.
+  // The range test and the clamp are branch-free loops, vectorized at -O3 (a test and a branch per
+  // pixel cost 10 instructions, 3 M per 640x480 image); a row that fails is scanned again for the
+  // message.
   const float lo = -tolerance, hi = 1.0f + tolerance;
   for (int v = 0; v < out.rows; ++v) {
     float* row = out.ptr<float>(v);
     int bad = 0;
-#pragma omp simd reduction(| : bad)
     for (int u = 0; u < out.cols; ++u) {
       bad |= static_cast<int>(!(row[u] >= lo)) | static_cast<int>(!(row[u] <= hi));  // NaN is bad
     }
@@ -57,7 +57,6 @@ cv::Mat toProbabilityImage(const cv::Mat& image, double uint16_scale) {
         }
       }
     }
-#pragma omp simd
     for (int u = 0; u < out.cols; ++u) {
       const float p = row[u] > 0.0f ? row[u] : 0.0f;
       row[u] = p < 1.0f ? p : 1.0f;

@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
-#include <regex>
 #include <sstream>
 
 #include "stocs/bop_dataset.h"
@@ -428,6 +428,9 @@ TEST_F(EvalCliTest, BenchRefusesUnknownMethodsAndSources) {
 }
 
 TEST(BenchHelp, ShowsTheDefaultOfEveryOptionWithAValue) {
+  // CLI11's type names of options that take a value (std::regex here drew a GCC false positive,
+  // -Wmaybe-uninitialized inside <functional>, in the sanitizer build).
+  const char* const kValueTypes[] = {" TEXT", " INT", " UINT", " FLOAT", " BOOLEAN"};
   std::string help;
   ASSERT_EQ(test::runCommand(kTool + " bench --help", help), 0);
   std::istringstream lines(help);
@@ -435,7 +438,9 @@ TEST(BenchHelp, ShowsTheDefaultOfEveryOptionWithAValue) {
   for (std::string line; std::getline(lines, line);) {
     const size_t name = line.find("--");
     if (name == std::string::npos || line.find_first_not_of(' ') != name) continue;
-    const bool takes_value = std::regex_search(line, std::regex(" (TEXT|INT|UINT|FLOAT|BOOLEAN)"));
+    const bool takes_value =
+        std::any_of(std::begin(kValueTypes), std::end(kValueTypes),
+                    [&](const char* type) { return line.find(type) != std::string::npos; });
     if (!takes_value || line.find("REQUIRED") != std::string::npos) continue;
     ++options;
     EXPECT_NE(line.find('='), std::string::npos) << "no default shown: " << line;
