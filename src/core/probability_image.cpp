@@ -41,16 +41,17 @@ cv::Mat toProbabilityImage(const cv::Mat& image, double uint16_scale) {
   // pixel cost 10 instructions, 3 M per 640x480 image); a row that fails is scanned again for the
   // message.
   const float lo = -tolerance, hi = 1.0f + tolerance;
+  auto outside = [&](float p) {  // NaN is outside; no short-circuit, so the loop stays branch-free
+    return static_cast<int>(!(p >= lo)) | static_cast<int>(!(p <= hi));
+  };
   for (int v = 0; v < out.rows; ++v) {
     float* row = out.ptr<float>(v);
     int bad = 0;
-    for (int u = 0; u < out.cols; ++u) {
-      bad |= static_cast<int>(!(row[u] >= lo)) | static_cast<int>(!(row[u] <= hi));  // NaN is bad
-    }
+    for (int u = 0; u < out.cols; ++u) bad |= outside(row[u]);
     if (bad) {
       for (int u = 0; u < out.cols; ++u) {
         const float p = row[u];
-        if (!(p >= lo && p <= hi)) {
+        if (outside(p)) {
           throw InputError(fmt::format(
               "probability image value {} at pixel (u={}, v={}) is outside [0, 1]{}", p, u, v,
               image.depth() == CV_16U ? fmt::format(" (raw value / {})", uint16_scale) : ""));
