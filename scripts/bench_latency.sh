@@ -6,14 +6,15 @@
 # the hypervisor stole during the run (it stretches every latency on a shared VM). It runs twice:
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
 # in one manager (passed as shared pointers).
-#   scripts/bench_latency.sh [FRAMES [RATE [BASES]]]   (defaults: 60 frames at 5 Hz, the
-#                                                   configuration's bases, i.e. 100)
+#   scripts/bench_latency.sh [FRAMES [RATE [BASES [CONSENSUS]]]]   (defaults: 60 frames at 5 Hz,
+#     the configuration's bases and consensus_bases, i.e. 100 and 0: every base runs)
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 frames=${1:-60}
 rate=${2:-5}
 bases=${3:-}
+consensus=${4:-}
 set +u
 source "$WS/devel/setup.bash"
 set -u
@@ -31,8 +32,12 @@ for line in open(sys.argv[1]):
         continue
     print(line, end="")
 PY
-if [ -n "$bases" ]; then
-  printf 'estimation:\n  stocs:\n    bases: %s\n' "$bases" >> "$out/config.yaml"
+if [ -n "$bases$consensus" ]; then
+  printf 'estimation:\n  stocs:\n' >> "$out/config.yaml"
+  if [ -n "$bases" ]; then printf '    bases: %s\n' "$bases" >> "$out/config.yaml"; fi
+  if [ -n "$consensus" ]; then
+    printf '    consensus_bases: %s\n' "$consensus" >> "$out/config.yaml"
+  fi
 fi
 # Busy and stolen CPU time so far (jiffies, all cores): on a virtual machine the hypervisor's steal
 # time stretches every latency, so each result says how much of it there was.

@@ -5,7 +5,8 @@
 //
 // Determinism: base b draws from its own random stream streamSeed(seed, b), and ties between equal
 // scores go to the lower (base, set) index, so with a base limit and no time budget the result is
-// the same for every thread count. A time budget makes the number of bases depend on the machine.
+// the same for every thread count. A time budget makes the number of bases depend on the machine;
+// the consensus stop does not (it is decided between whole blocks of bases, on exact scores).
 
 #include <Eigen/Geometry>
 #include <vector>
@@ -43,7 +44,15 @@ struct StocsParams {
   LcpParams lcp;
   IcpParams icp;
   FreeSpaceParams free_space;
-  int bases = 100;  ///< bases per object
+  int bases = 100;  ///< bases per object (at most, with consensus_bases)
+  /// Adaptive stop (BaseConsensus; 0: always run `bases`): the bases run in blocks of
+  /// kConsensusBlock, and after each block the loop ends once this many best bases so far all put
+  /// the object in the same place, up to its symmetries (ADD-S below instance_separation of the
+  /// diameter). For a single instance only: with instances > 1 every base runs, since the next
+  /// instance may come from any of them. Off by default: faster on objects in plain view, but it
+  /// can stop before the base that finds a hard pose (BENCHMARKS.md, "Consensus stop").
+  int consensus_bases = 0;
+  static constexpr int kConsensusBlock = 10;
   /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.
   int instances = 1;
   /// Two poses are one instance when their ADD-S distance is below this fraction of the diameter
@@ -82,7 +91,7 @@ struct PoseEstimate {
   /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
   /// above.
   std::vector<InstancePose> instances;
-  int bases_tried = 0;         ///< bases started within the budget
+  int bases_tried = 0;         ///< bases started within the budget and before consensus
   int bases_sampled = 0;       ///< of those, bases actually drawn
   int bases_with_sets = 0;     ///< of those, bases with at least one congruent set
   long congruent_sets = 0;     ///< sets verified (after the per-base cap)

@@ -11,6 +11,7 @@
 #include <optional>
 #include <vector>
 
+#include "stocs/base_consensus.h"
 #include "stocs/error.h"
 #include "stocs/instance_separation.h"
 #include "stocs/rigid_fit.h"
@@ -180,6 +181,9 @@ void StocsParams::validate() const {
   }
   if (bases < 1 || bases > 1000000)
     throw InputError(fmt::format("bases {} is outside [1, 1000000]", bases));
+  if (consensus_bases < 0 || consensus_bases > 1000) {
+    throw InputError(fmt::format("consensus bases {} is outside [0, 1000]", consensus_bases));
+  }
   if (!(time_budget >= 0) || time_budget > 3600) {
     throw InputError(fmt::format("time budget {} s is outside [0, 3600]", time_budget));
   }
@@ -245,8 +249,19 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   // best, as the next instance may come from any base.
   const size_t refined_bases =
       params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
-  const size_t keep = params_.instances > 1 ? static_cast<size_t>(params_.bases) : refined_bases;
+  // The consensus stop needs exact scores for the bases it compares: those of the `keep` best.
+  std::optional<BaseConsensus> consensus;
+  size_t keep = refined_bases;
+  if (params_.instances > 1) {
+    keep = static_cast<size_t>(params_.bases);
+  } else if (params_.consensus_bases > 0) {
+    keep = std::max(keep, static_cast<size_t>(params_.consensus_bases));
+    consensus.emplace(model, params_.instance_separation * model.diameter, params_.consensus_bases);
+  }
   const auto finished = static_cast<size_t>(params_.finished_per_base);
+  // Without the consensus stop the bases are one block.
+  const int block = consensus ? StocsParams::kConsensusBlock : params_.bases;
+  bool agreed = false;  // shared: set between blocks, read by every thread after the barrier
 #pragma omp parallel num_threads(threads)
   {
     // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
@@ -258,9 +273,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<PlacedPose> scored;   // hypotheses of the current base
     std::vector<PartialScore> heads;  // their objectives over the first model points
     std::vector<uint32_t> order;      // the order in which they are finished
-#pragma omp for schedule(dynamic, 1)
-    for (int b = 0; b < params_.bases; ++b) {
-      if (budgeted && Clock::now() > deadline) continue;
+    auto runBase = [&](int b) {
+      if (budgeted && Clock::now() > deadline) return;
       BaseOutcome& out = outcomes[b];
       out.tried = true;
       Rng rng(streamSeed(params_.seed, static_cast<uint64_t>(b)));
@@ -268,7 +282,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       Clock::time_point t = Clock::now();
       const std::optional<Base> base = sampler.sample(rng, scratch);
       out.stages.sampling = secondsSince(t);
-      if (!base) continue;
+      if (!base) return;
       out.sampled = true;
       out.region = segment.region.empty() ? -1 : segment.region[(*base)[0]];
 
@@ -342,6 +356,20 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
         thread_top.insert(std::upper_bound(thread_top.begin(), thread_top.end(), out.score),
                           out.score);
         if (thread_top.size() > keep) thread_top.erase(thread_top.begin());
+      }
+    };
+    for (int first = 0; first < params_.bases && !agreed; first += block) {
+      const int last = std::min(params_.bases, first + block);
+#pragma omp for schedule(dynamic, 1)
+      for (int b = first; b < last; ++b) runBase(b);
+      // The barrier at the end of the loop above makes the block's outcomes visible, and the one
+      // at the end of `single` makes `agreed` the same for every thread before it is read.
+      if (consensus) {
+#pragma omp single
+        {
+          for (int b = first; b < last; ++b) consensus->add(b, outcomes[b].score, outcomes[b].pose);
+          agreed = consensus->reached();
+        }
       }
     }
   }

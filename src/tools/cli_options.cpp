@@ -28,7 +28,13 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(model);
 
   const std::string stocs = "StoCS (paper section 3)";
-  cmd.add_option("--bases", p.stocs.bases, "Bases sampled per object")->group(stocs);
+  cmd.add_option("--bases", p.stocs.bases, "Bases sampled per object (at most, with --consensus)")
+      ->group(stocs);
+  cmd.add_option("--consensus", p.stocs.consensus_bases,
+                 "Stop between blocks of 10 bases once this many best bases all put the object "
+                 "in the same place (0: run every base; single instance only; faster but can miss "
+                 "hard poses)")
+      ->group(stocs);
   cmd.add_option("--time-budget", p.stocs.time_budget,
                  "Seconds per object; 0: no limit (a budget makes results machine-dependent)")
       ->group(stocs);

@@ -167,6 +167,38 @@ TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
   EXPECT_LT(e.seconds, 5.0);  // generous: the loop stops starting bases after 50 ms
 }
 
+TEST_F(StocsEstimatorTest, ConsensusEndsTheLoopEarlyWithTheSameAnswerOnAnyThreadCount) {
+  PipelineParams params;
+  params.stocs.consensus_bases = 3;
+  for (uint64_t seed : {1u, 2u, 3u}) {
+    params.stocs.seed = seed;
+    params.stocs.threads = 1;
+    const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(segment(params));
+    params.stocs.threads = 2;
+    const PoseEstimate two = StocsEstimator(model_, params.stocs).estimate(segment(params));
+    ASSERT_TRUE(one.found) << "seed " << seed;
+    // The block is plainly visible: its bases agree long before the hundredth, and the loop ends
+    // between whole blocks of bases.
+    EXPECT_LT(one.bases_tried, params.stocs.bases) << "seed " << seed;
+    EXPECT_EQ(one.bases_tried % StocsParams::kConsensusBlock, 0) << "seed " << seed;
+    EXPECT_LT(addsOf(one), 0.05 * model_.model.diameter) << "seed " << seed;
+    EXPECT_EQ(one.bases_tried, two.bases_tried) << "seed " << seed;
+    EXPECT_EQ(one.pose.matrix(), two.pose.matrix()) << "seed " << seed;
+  }
+}
+
+TEST_F(StocsEstimatorTest, ConsensusNeverStopsASearchForSeveralInstances) {
+  PipelineParams params;
+  params.stocs.seed = 1;
+  params.stocs.consensus_bases = 1;  // the first block would always end it
+  params.stocs.instances = 2;
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(segment(params)).bases_tried,
+            params.stocs.bases);
+  params.stocs.instances = 1;
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(segment(params)).bases_tried,
+            StocsParams::kConsensusBlock);
+}
+
 TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   PipelineParams params;
   const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
@@ -248,6 +280,13 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   p = StocsParams{};
   p.instance_separation = 0;
   EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.consensus_bases = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p.consensus_bases = 1001;
+  EXPECT_THROW(p.validate(), InputError);
+  p.consensus_bases = 1000;
+  EXPECT_NO_THROW(p.validate());
 }
 
 }  // namespace
