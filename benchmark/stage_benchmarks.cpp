@@ -10,6 +10,7 @@
 #include "benchmark_frames.h"
 #include "stocs/base_sampler.h"
 #include "stocs/congruent_set_matcher.h"
+#include "stocs/free_space_check.h"
 #include "stocs/lcp_scorer.h"
 #include "stocs/rigid_fit.h"
 
@@ -78,20 +79,29 @@ constexpr uint64_t kFullEstimateSeeds = 10;
 void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
   // Iteration i runs seed i % kFullEstimateSeeds: one seed's bases can be cheaper or dearer than
   // the frame's typical run, and code that changes the random stream must not look faster or
-  // slower for that alone.
+  // slower for that alone. The free-space check is the pipeline's (estimateObject): it ranks the
+  // refined candidates and guards the consensus stop.
   const Frame& f = get();
+  const CameraIntrinsics camera = intrinsicsFromCloud(f.cloud);
+  const PipelineParams defaults = benchmarkParams();
+  const FreeSpaceCheck free_space(f.cloud, camera, defaults.stocs.free_space);
   std::vector<StocsEstimator> estimators;
   estimators.reserve(kFullEstimateSeeds);
   for (uint64_t seed = 0; seed < kFullEstimateSeeds; ++seed) {
-    PipelineParams p = benchmarkParams();
-    p.stocs.threads = static_cast<int>(state.range(0));  // 0: all cores
+    PipelineParams p = defaults;
+    p.stocs.threads = static_cast<int>(state.range(0));    // 0: all cores
+    if (state.range(1) == 0) p.stocs.consensus_bases = 0;  // 0: every base; 1: the default
     p.stocs.seed = seed;
     estimators.emplace_back(f.model, p.stocs);
   }
   size_t i = 0;
+  int bases = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(estimators[i++ % kFullEstimateSeeds].estimate(f.segment));
+    const PoseEstimate e = estimators[i++ % kFullEstimateSeeds].estimate(f.segment, &free_space);
+    bases += e.bases_tried;
+    benchmark::DoNotOptimize(e);
   }
+  state.counters["bases"] = benchmark::Counter(bases, benchmark::Counter::kAvgIterations);
 }
 
 BENCHMARK_CAPTURE(softSegment, cat, cat)->Unit(benchmark::kMillisecond);
@@ -103,21 +113,24 @@ BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, dove, dove)->Unit(benchmark::kMicrosecond);
-// One thread (CPU time per core), then all cores: process CPU time over all threads and wall time.
-// A repetition runs every seed once. Registered in a loop: the six differ only in frame and
-// threads.
+// One thread (CPU time per core), then all cores: process CPU time over all threads and wall time;
+// each with every base (consensus:0) and with the default consensus stop (consensus:1). A
+// repetition runs every seed once. Registered in a loop: they differ only in frame, threads and
+// consensus.
 const bool kFullEstimateRegistered = [] {
   const std::pair<const char*, const Frame& (*)()> frames[] = {
       {"fullEstimate/cat", cat}, {"fullEstimate/dove", dove}, {"fullEstimate/box", box}};
   for (const auto& [name, get] : frames) {
     benchmark::RegisterBenchmark(name, fullEstimate, get)
-        ->Arg(1)
+        ->ArgsProduct({{1}, {0, 1}})
+        ->ArgNames({"threads", "consensus"})
         ->Iterations(kFullEstimateSeeds)
         ->Unit(benchmark::kMillisecond);
   }
   for (const auto& [name, get] : frames) {
     benchmark::RegisterBenchmark(name, fullEstimate, get)
-        ->Arg(0)
+        ->ArgsProduct({{0}, {0, 1}})
+        ->ArgNames({"threads", "consensus"})
         ->Iterations(kFullEstimateSeeds)
         ->MeasureProcessCPUTime()
         ->UseRealTime()

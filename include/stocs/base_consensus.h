@@ -4,12 +4,15 @@
 // long before that, and the rest only confirm it. BaseConsensus watches the best bases so far and
 // says when the N best of them all put the object in the same place, up to the object's
 // symmetries (InstanceSeparation's ADD-S test): independent random bases that agree are the
-// classic RANSAC sign that more samples will rarely change the answer. Rarely is not never (a pose
-// that only a late base finds, or one that the free-space check prefers among more candidates, is
-// lost): the accuracy it costs is measured in BENCHMARKS.md, which is why the estimator leaves it
-// off by default.
+// classic RANSAC sign that more samples will rarely change the answer.
+//
+// Agreement alone also ends the search on a wrong pose that many bases find first (a box slid
+// along its face, a block turned over), so the caller may add a test of the best base's pose: the
+// estimator's is the free-space check of that pose once refined. Accuracy and time with and
+// without: BENCHMARKS.md, "Consensus stop".
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <vector>
 
 #include "stocs/instance_separation.h"
@@ -19,8 +22,12 @@ namespace stocs {
 
 class BaseConsensus {
  public:
-  /// Consensus is the `needed` best bases all within `separation` metres ADD-S of the best one.
-  BaseConsensus(const ObjectModel& model, float separation, int needed);
+  /// Whether the pose of base `base`, the best so far, may end the search.
+  using Accept = std::function<bool(int base)>;
+
+  /// Consensus is the `needed` best bases all within `separation` metres ADD-S of the best one,
+  /// and `accept` (when given) true for the best one.
+  BaseConsensus(const ObjectModel& model, float separation, int needed, Accept accept = {});
 
   /// Records the best hypothesis of base `base`; a score of zero or less (no hypothesis) is
   /// ignored. Of equal scores, the lower base index ranks first, as in the estimator.
@@ -38,8 +45,10 @@ class BaseConsensus {
   };
 
   InstanceSeparation same_place_;
+  Accept accept_;
   size_t needed_;
-  std::vector<Entry> best_;  // best first, at most needed_
+  std::vector<Entry> best_;         // best first, at most needed_
+  signed char best_accepted_ = -1;  // accept_ of the best: -1 not yet asked, 0 no, 1 yes
 };
 
 }  // namespace stocs

@@ -32,8 +32,7 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(stocs);
   cmd.add_option("--consensus", p.stocs.consensus_bases,
                  "Stop between blocks of 10 bases once this many best bases all put the object "
-                 "in the same place (0: run every base; single instance only; faster but can miss "
-                 "hard poses)")
+                 "in the same place, out of free space (0: run every base; single instance only)")
       ->group(stocs);
   cmd.add_option("--time-budget", p.stocs.time_budget,
                  "Seconds per object; 0: no limit (a budget makes results machine-dependent)")

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "stocs/base_consensus.h"
 #include "stocs/object_model.h"
@@ -78,6 +79,25 @@ TEST_F(BaseConsensusTest, EqualScoresRankByBaseIndexAndEmptyBasesAreIgnored) {
   EXPECT_FALSE(c.reached());
   c.add(4, 5, nudged_);  // before base 5: the two best are bases 2 and 4
   EXPECT_TRUE(c.reached());
+}
+
+TEST_F(BaseConsensusTest, TheCallersTestOfTheBestPoseMustPassToo) {
+  std::vector<int> asked;
+  // Base 0's pose fails the test (the estimator's: in free space once refined).
+  BaseConsensus c(box_, 0.1f * box_.diameter, 2, [&](int base) {
+    asked.push_back(base);
+    return base != 0;
+  });
+  c.add(0, 5, here_);
+  c.add(1, 4, nudged_);
+  EXPECT_FALSE(c.reached());  // they agree, on a pose the test rejects
+  EXPECT_FALSE(c.reached());
+  c.add(2, 3, turned_);  // not a new best: the answer stands without asking again
+  EXPECT_FALSE(c.reached());
+  c.add(3, 6, turned_);  // a new best, asked once
+  EXPECT_TRUE(c.reached());
+  EXPECT_TRUE(c.reached());
+  EXPECT_EQ(asked, (std::vector<int>{0, 3}));
 }
 
 }  // namespace
