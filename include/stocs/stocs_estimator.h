@@ -48,11 +48,11 @@ struct StocsParams {
   /// Adaptive stop (BaseConsensus; 0: always run `bases`, as the paper does): the bases run in
   /// blocks of kConsensusBlock, and after each block the loop ends once this many best bases so
   /// far all put the object in the same place, up to its symmetries (ADD-S below
-  /// instance_separation of the diameter), and that place keeps the object's surface out of free
-  /// space. For a single instance only: with instances > 1 every base runs, since the next
-  /// instance may come from any of them. On the evaluation sets it found the same objects as 100
-  /// bases with half to a third of the hypotheses on objects in plain view (BENCHMARKS.md,
-  /// "Consensus stop").
+  /// instance_separation of the diameter) and, given a free-space check, the best one keeps its
+  /// surface out of free space. For a single instance only: with instances > 1 every base runs,
+  /// since the next instance may come from any of them. On the evaluation sets it found as many
+  /// objects as 100 bases with half to a third of the hypotheses on objects in plain view
+  /// (BENCHMARKS.md, "Consensus stop").
   int consensus_bases = 8;
   static constexpr int kConsensusBlock = 10;
   /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.
