@@ -7,7 +7,7 @@
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
 # in one manager (passed as shared pointers).
 #   scripts/bench_latency.sh [FRAMES [RATE [BASES [CONSENSUS]]]]   (defaults: 60 frames at 5 Hz,
-#     the configuration's bases and consensus_bases, i.e. 100 and 0: every base runs)
+#     the configuration's bases and consensus_bases, i.e. 100 and 8; CONSENSUS 0 runs every base)
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"

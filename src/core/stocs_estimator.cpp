@@ -35,8 +35,9 @@ struct HeadRound {
 constexpr HeadRound kHeadRounds[] = {{0.25f, 8}, {0.5f, 4}, {1.0f, 1}};
 
 /// The consensus stop's free-space limit: the best base's pose may put at most this share of its
-/// camera-facing surface where the sensor sees through. Agreement alone stopped on slid boxes and
-/// turned-over blocks with 19-51% there; objects whose right pose exceeds it just run every base.
+/// camera-facing surface where the sensor sees through. Of the wrong poses agreement alone stopped
+/// on, slid boxes and turned-over blocks had 19-51% there (refined); objects whose best raw pose
+/// exceeds the limit just run every base.
 /// The unrefined pose is judged: judged after ICP, wrong poses passed more often (BENCHMARKS.md,
 /// "Consensus stop").
 constexpr float kConsensusFreeSpace = 0.05f;
