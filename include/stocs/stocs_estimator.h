@@ -45,6 +45,13 @@ struct StocsParams {
   IcpParams icp;
   FreeSpaceParams free_space;
   int bases = 100;  ///< bases per object (at most, with consensus_bases)
+  /// Base draws per object when fewer bases are asked for: a base that gives nothing to verify
+  /// (no congruent set on the model, or no set whose fit passes) is drawn again, up to
+  /// max(1, base_draw_budget / bases) draws in all. On a cluttered segment most draws straddle
+  /// other surfaces (62-70% of the cat's on its network map), so a few bases would otherwise mean
+  /// a few verified ones; with `bases` at or above the budget every base is drawn once, as in
+  /// the paper. Accuracy and time at 5-20 bases: BENCHMARKS.md, "Drawing failed bases again".
+  int base_draw_budget = 100;
   /// Adaptive stop (BaseConsensus; 0: always run `bases`, as the paper does): the bases run in
   /// blocks of kConsensusBlock, and after each block the loop ends once this many best bases so
   /// far all put the object in the same place, up to its symmetries (ADD-S below
@@ -95,6 +102,7 @@ struct PoseEstimate {
   std::vector<InstancePose> instances;
   int bases_tried = 0;         ///< bases started within the budget and before consensus
   int bases_sampled = 0;       ///< of those, bases actually drawn
+  int base_draws = 0;          ///< draws in all, with those of bases drawn again (base_draw_budget)
   int bases_with_sets = 0;     ///< of those, bases with at least one congruent set
   long congruent_sets = 0;     ///< sets verified (after the per-base cap)
   long hypotheses = 0;         ///< rigid fits that passed the RMS check and were scored

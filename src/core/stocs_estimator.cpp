@@ -49,7 +49,7 @@ double secondsSince(Clock::time_point t) {
 /// What one base produced: its best hypothesis and counters.
 struct BaseOutcome {
   bool tried = false, sampled = false;
-  int sets = 0;
+  int draws = 0, sets = 0;
   long hypotheses = 0, duplicates = 0, normal_mismatches = 0, finished = 0;
   float score = -std::numeric_limits<float>::infinity();
   int region = -1;  // instance region of the base, -1 without regions
@@ -245,6 +245,9 @@ void StocsParams::validate() const {
   }
   if (bases < 1 || bases > 1000000)
     throw InputError(fmt::format("bases {} is outside [1, 1000000]", bases));
+  if (base_draw_budget < 0 || base_draw_budget > 1000000) {
+    throw InputError(fmt::format("base draw budget {} is outside [0, 1000000]", base_draw_budget));
+  }
   if (consensus_bases < 0 || consensus_bases > 1000) {
     throw InputError(fmt::format("consensus bases {} is outside [0, 1000]", consensus_bases));
   }
@@ -332,6 +335,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
                       std::move(clear));
   }
   const auto finished = static_cast<size_t>(params_.finished_per_base);
+  const int draws_per_base = std::max(1, params_.base_draw_budget / params_.bases);
   BaseDispenser dispenser(params_.bases, consensus ? &*consensus : nullptr, outcomes);
 #pragma omp parallel num_threads(threads)
   {
@@ -344,16 +348,14 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<PlacedPose> scored;   // hypotheses of the current base
     std::vector<PartialScore> heads;  // their objectives over the first model points
     std::vector<uint32_t> order;      // the order in which they are finished
-    auto runBase = [&](int b) {
-      if (budgeted && Clock::now() > deadline) return;
-      BaseOutcome& out = outcomes[b];
-      out.tried = true;
-      Rng rng(streamSeed(params_.seed, static_cast<uint64_t>(b)));
-
+    // One draw of a base and its hypotheses (appended to `scored`); false when no base could be
+    // drawn.
+    auto drawBase = [&](Rng& rng, BaseOutcome& out) {
+      ++out.draws;
       Clock::time_point t = Clock::now();
       const std::optional<Base> base = sampler.sample(rng, scratch);
-      out.stages.sampling = secondsSince(t);
-      if (!base) return;
+      out.stages.sampling += secondsSince(t);
+      if (!base) return false;
       out.sampled = true;
       out.region = segment.region.empty() ? -1 : segment.region[(*base)[0]];
 
@@ -364,12 +366,10 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       }
       t = Clock::now();
       matcher_.find(bp, bn, rng, sets, matching);
-      out.stages.matching = secondsSince(t);
-      out.sets = static_cast<int>(sets.size());
+      out.stages.matching += secondsSince(t);
+      out.sets += static_cast<int>(sets.size());
 
       t = Clock::now();
-      scored.clear();
-      heads.clear();
       for (const CongruentSet& set : sets) {
         const std::array<Eigen::Vector3f, 4> mp = {model.points[set[0]], model.points[set[1]],
                                                    model.points[set[2]], model.points[set[3]]};
@@ -386,6 +386,21 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
         }
         scored.push_back(placed);
       }
+      out.stages.verification += secondsSince(t);
+      return true;
+    };
+    auto runBase = [&](int b) {
+      if (budgeted && Clock::now() > deadline) return;
+      BaseOutcome& out = outcomes[b];
+      out.tried = true;
+      Rng rng(streamSeed(params_.seed, static_cast<uint64_t>(b)));
+
+      // A base with nothing to verify is drawn again from its own stream (base_draw_budget).
+      scored.clear();
+      for (int draw = 0; draw < draws_per_base && scored.empty(); ++draw) {
+        if (!drawBase(rng, out)) return;
+      }
+      const Clock::time_point t = Clock::now();
       out.hypotheses = static_cast<long>(scored.size());
       // Heads in rounds (kHeadRounds): every hypothesis on the first share of the head, the most
       // promising of them on the next, and so on to the whole head. Then the best heads are
@@ -422,7 +437,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
           out.pose = scored[h].pose;
         }
       }
-      out.stages.verification = secondsSince(t);
+      out.stages.verification += secondsSince(t);
       if (out.score > -std::numeric_limits<float>::infinity()) {
         thread_top.insert(std::upper_bound(thread_top.begin(), thread_top.end(), out.score),
                           out.score);
@@ -440,6 +455,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   for (const BaseOutcome& out : outcomes) {
     result.bases_tried += out.tried;
     result.bases_sampled += out.sampled;
+    result.base_draws += out.draws;
     result.bases_with_sets += out.sets > 0;
     result.congruent_sets += out.sets;
     result.hypotheses += out.hypotheses;

@@ -309,6 +309,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   free_space.get("margin", p.stocs.free_space.margin);
   free_space.rejectUnknownKeys();
   stocs.get("bases", p.stocs.bases);
+  stocs.get("base_draw_budget", p.stocs.base_draw_budget);
   stocs.get("consensus_bases", p.stocs.consensus_bases);
   stocs.get("time_budget", p.stocs.time_budget);
   stocs.get("seed", p.stocs.seed);

@@ -30,6 +30,10 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
   const std::string stocs = "StoCS (paper section 3)";
   cmd.add_option("--bases", p.stocs.bases, "Bases sampled per object (at most, with --consensus)")
       ->group(stocs);
+  cmd.add_option("--draw-budget", p.stocs.base_draw_budget,
+                 "Base draws per object: a base with nothing to verify is drawn again, up to "
+                 "budget / bases draws in all (at most 1 draw per base: the paper)")
+      ->group(stocs);
   cmd.add_option("--consensus", p.stocs.consensus_bases,
                  "Stop between blocks of 10 bases once this many best bases all put the object "
                  "in the same place, out of free space (0: run every base; single instance only)")

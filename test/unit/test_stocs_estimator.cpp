@@ -201,6 +201,39 @@ TEST_F(StocsEstimatorTest, ConsensusNeverStopsASearchForSeveralInstances) {
             StocsParams::kConsensusBlock);
 }
 
+TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget) {
+  PipelineParams params;
+  params.stocs.seed = 4;
+  params.stocs.bases = 10;
+  params.stocs.consensus_bases = 0;
+  params.stocs.base_draw_budget = 0;  // one draw per base
+  const SoftSegment seg = segment(params);
+  const PoseEstimate once = StocsEstimator(model_, params.stocs).estimate(seg);
+  EXPECT_EQ(once.base_draws, once.bases_sampled);
+  // The segment bleeds onto the table, and some bases straddle it and the block.
+  ASSERT_LT(once.bases_with_sets, params.stocs.bases);
+
+  params.stocs.base_draw_budget = 100;  // up to 10 draws per base
+  params.stocs.threads = 1;
+  const PoseEstimate again = StocsEstimator(model_, params.stocs).estimate(seg);
+  EXPECT_GT(again.base_draws, once.base_draws);
+  EXPECT_LE(again.base_draws, 10 * params.stocs.bases);
+  EXPECT_GT(again.bases_with_sets, once.bases_with_sets);
+  ASSERT_TRUE(again.found);
+  params.stocs.threads = 2;  // the draws of a base come from its own stream
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(seg).pose.matrix(), again.pose.matrix());
+
+  // With as many bases as the budget, every base is drawn once: the paper's loop.
+  params.stocs.bases = 100;
+  params.stocs.base_draw_budget = 100;
+  const PoseEstimate full = StocsEstimator(model_, params.stocs).estimate(seg);
+  params.stocs.base_draw_budget = 0;
+  const PoseEstimate paper = StocsEstimator(model_, params.stocs).estimate(seg);
+  EXPECT_EQ(full.base_draws, full.bases_sampled);
+  EXPECT_EQ(full.pose.matrix(), paper.pose.matrix());
+  EXPECT_EQ(full.hypotheses, paper.hypotheses);
+}
+
 TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   PipelineParams params;
   const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
@@ -288,6 +321,13 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   p.consensus_bases = 1001;
   EXPECT_THROW(p.validate(), InputError);
   p.consensus_bases = 1000;
+  EXPECT_NO_THROW(p.validate());
+  p = StocsParams{};
+  p.base_draw_budget = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p.base_draw_budget = 1000001;
+  EXPECT_THROW(p.validate(), InputError);
+  p.base_draw_budget = 0;
   EXPECT_NO_THROW(p.validate());
 }
 

@@ -82,6 +82,7 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.min_normal_agreement, d.stocs.min_normal_agreement);
   EXPECT_EQ(p.stocs.finished_per_base, d.stocs.finished_per_base);
   EXPECT_EQ(p.stocs.consensus_bases, d.stocs.consensus_bases);
+  EXPECT_EQ(p.stocs.base_draw_budget, d.stocs.base_draw_budget);
   EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
   EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
   EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
@@ -126,7 +127,7 @@ model_cache: none
 estimation:
   segment: {min_probability: 0.3, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
-  stocs: {bases: 40, consensus_bases: 6, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
+  stocs: {bases: 40, base_draw_budget: 120, consensus_bases: 6, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
           finished_per_base: 7, icp: {enabled: false, candidates: 3}, free_space: {enabled: false, margin: 0.02},
           lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
@@ -178,6 +179,7 @@ estimation:
   EXPECT_EQ(c.estimation.stocs.min_normal_agreement, 2);
   EXPECT_EQ(c.estimation.stocs.finished_per_base, 7);
   EXPECT_EQ(c.estimation.stocs.consensus_bases, 6);
+  EXPECT_EQ(c.estimation.stocs.base_draw_budget, 120);
 }
 
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
@@ -199,6 +201,8 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
        "hypotheses finished per base 0 is outside [1, 100000]"},
       {box + "estimation: {stocs: {consensus_bases: -1}}\n",
        "consensus bases -1 is outside [0, 1000]"},
+      {box + "estimation: {stocs: {base_draw_budget: -1}}\n",
+       "base draw budget -1 is outside [0, 1000000]"},
       {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
       {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
       {box + "input: {probability: multichannel, channels: [box, cup]}\n",
