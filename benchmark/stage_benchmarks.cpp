@@ -76,12 +76,13 @@ void verification(benchmark::State& state, const Frame& (*get)()) {
 
 constexpr uint64_t kFullEstimateSeeds = 10;
 
-void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
-  // Iteration i runs seed i % kFullEstimateSeeds: one seed's bases can be cheaper or dearer than
-  // the frame's typical run, and code that changes the random stream must not look faster or
-  // slower for that alone. The free-space check is the pipeline's (estimateObject): it ranks the
-  // refined candidates and guards the consensus stop.
-  const Frame& f = get();
+/// Runs the estimator on a frame, seed i % kFullEstimateSeeds on iteration i, with the benchmark
+/// parameters as `configure` sets them. One seed's bases can be cheaper or dearer than the frame's
+/// typical run, and code that changes the random stream must not look faster or slower for that
+/// alone. The free-space check is the pipeline's (estimateObject): it ranks the refined candidates
+/// and guards the consensus stop.
+template <class Configure>
+void runEstimates(benchmark::State& state, const Frame& f, Configure&& configure) {
   const CameraIntrinsics camera = intrinsicsFromCloud(f.cloud);
   const PipelineParams defaults = benchmarkParams();
   const FreeSpaceCheck free_space(f.cloud, camera, defaults.stocs.free_space);
@@ -89,19 +90,37 @@ void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
   estimators.reserve(kFullEstimateSeeds);
   for (uint64_t seed = 0; seed < kFullEstimateSeeds; ++seed) {
     PipelineParams p = defaults;
-    p.stocs.threads = static_cast<int>(state.range(0));    // 0: all cores
-    if (state.range(1) == 0) p.stocs.consensus_bases = 0;  // 0: every base; 1: the default
+    configure(p.stocs);
     p.stocs.seed = seed;
     estimators.emplace_back(f.model, p.stocs);
   }
   size_t i = 0;
-  int bases = 0;
+  int bases = 0, draws = 0;
   for (auto _ : state) {
     const PoseEstimate e = estimators[i++ % kFullEstimateSeeds].estimate(f.segment, &free_space);
     bases += e.bases_tried;
+    draws += e.base_draws;
     benchmark::DoNotOptimize(e);
   }
   state.counters["bases"] = benchmark::Counter(bases, benchmark::Counter::kAvgIterations);
+  state.counters["draws"] = benchmark::Counter(draws, benchmark::Counter::kAvgIterations);
+}
+
+void fullEstimate(benchmark::State& state, const Frame& (*get)()) {
+  runEstimates(state, get(), [&](StocsParams& p) {
+    p.threads = static_cast<int>(state.range(0));    // 0: all cores
+    if (state.range(1) == 0) p.consensus_bases = 0;  // 0: every base; 1: the default
+  });
+}
+
+/// The low-latency settings of the side by side at equal accuracy: few bases, with and without
+/// drawing failed bases again (StocsParams::base_draw_budget), on all cores.
+void fewBases(benchmark::State& state, const Frame& (*get)()) {
+  runEstimates(state, get(), [&](StocsParams& p) {
+    p.threads = 0;
+    p.bases = static_cast<int>(state.range(0));
+    p.base_draw_budget = static_cast<int>(state.range(1));
+  });
 }
 
 BENCHMARK_CAPTURE(softSegment, cat, cat)->Unit(benchmark::kMillisecond);
@@ -131,6 +150,17 @@ const bool kFullEstimateRegistered = [] {
     benchmark::RegisterBenchmark(name, fullEstimate, get)
         ->ArgsProduct({{0}, {0, 1}})
         ->ArgNames({"threads", "consensus"})
+        ->Iterations(kFullEstimateSeeds)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  const std::pair<const char*, const Frame& (*)()> few[] = {
+      {"fewBases/cat", cat}, {"fewBases/dove", dove}, {"fewBases/box", box}};
+  for (const auto& [name, get] : few) {
+    benchmark::RegisterBenchmark(name, fewBases, get)
+        ->ArgsProduct({{5, 10, 20}, {0, 100}})
+        ->ArgNames({"bases", "draw_budget"})
         ->Iterations(kFullEstimateSeeds)
         ->MeasureProcessCPUTime()
         ->UseRealTime()

@@ -48,7 +48,7 @@ struct StocsParams {
   /// Base draws per object when fewer bases are asked for: a base that gives nothing to verify
   /// (no congruent set on the model, or no set whose fit passes) is drawn again, up to
   /// max(1, base_draw_budget / bases) draws in all. On a cluttered segment most draws straddle
-  /// other surfaces (62-70% of the cat's on its network map), so a few bases would otherwise mean
+  /// other surfaces (60-70% of the cat's on its network map), so a few bases would otherwise mean
   /// a few verified ones; with `bases` at or above the budget every base is drawn once, as in
   /// the paper. Accuracy and time at 5-20 bases: BENCHMARKS.md, "Drawing failed bases again".
   int base_draw_budget = 100;
