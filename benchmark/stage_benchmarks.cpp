@@ -3,6 +3,7 @@
 //   STOCS_DATASETS=../shared/datasets build/.../stocs_stage_benchmarks
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <utility>
 #include <vector>
@@ -20,8 +21,10 @@ namespace {
 void softSegment(benchmark::State& state, const Frame& (*get)()) {
   const Frame& f = get();
   const PipelineParams p = benchmarkParams();
-  for (auto _ : state)
-    benchmark::DoNotOptimize(buildSoftSegment(f.cloud, f.probability, f.focal, p.segment));
+  const int threads = state.range(0) > 0 ? static_cast<int>(state.range(0)) : omp_get_max_threads();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(buildSoftSegment(f.cloud, f.probability, f.focal, p.segment, threads));
+  }
   state.counters["points"] = static_cast<double>(f.segment.size());
 }
 
@@ -123,9 +126,6 @@ void fewBases(benchmark::State& state, const Frame& (*get)()) {
   });
 }
 
-BENCHMARK_CAPTURE(softSegment, cat, cat)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(softSegment, dove, dove)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(softSegment, box, box)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(baseSampling, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(baseSampling, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
@@ -151,6 +151,21 @@ const bool kFullEstimateRegistered = [] {
         ->ArgsProduct({{0}, {0, 1}})
         ->ArgNames({"threads", "consensus"})
         ->Iterations(kFullEstimateSeeds)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+  }
+  // The soft segment on one thread, then on all cores (threads:0, wall time).
+  const std::pair<const char*, const Frame& (*)()> soft[] = {
+      {"softSegment/cat", cat}, {"softSegment/dove", dove}, {"softSegment/box", box}};
+  for (const auto& [name, get] : soft) {
+    benchmark::RegisterBenchmark(name, softSegment, get)
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(name, softSegment, get)
+        ->ArgName("threads")
+        ->Arg(0)
         ->MeasureProcessCPUTime()
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);

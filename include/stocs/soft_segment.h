@@ -45,8 +45,8 @@ struct SoftSegment {
 /// Builds the soft segment from an organized cloud and a CV_32FC1 probability image of the same
 /// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods. Pixels without depth
 /// or without a normal are left out; the result may be empty. Throws InputError on a size or type
-/// mismatch. The normals, independent per point, are estimated on `threads` threads; the result
-/// does not depend on it.
+/// mismatch. The pixel scan, the representatives and the normals run on `threads` threads (the
+/// grouping between them in image order); the result does not depend on it.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
                              float focal_px, const SoftSegmentParams& params, int threads = 1);
 

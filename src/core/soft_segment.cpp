@@ -53,73 +53,122 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
     throw InputError(fmt::format("focal length {} px is not positive", focal_px));
   }
 
-  // Pass 1: group the pixels above epsilon by voxel (each pixel is its own group at voxel size 0).
-  // A voxel spans several pixels, so the key of the pixel to the left or above is usually the
-  // same: remembering their groups skips most hash lookups, each of which costs an integer
-  // division by the table's prime size. A remembered key always maps to its group.
+  // Pass 1, in row bands on the threads: the pixels above epsilon with depth, and their voxel keys.
+  // Most of an image is background, below epsilon: a block of 16 pixels with none above it is
+  // skipped after 16 branch-free comparisons (a test and a branch per pixel cost 10 instructions,
+  // 3 M per 640x480 image, a fifth of the cat's soft segment).
   const float inv = params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f;
+  const float threshold = params.min_probability;
+  struct KeptPixel {
+    int pixel;
+    int group;  // set by pass 2
+    uint64_t key;
+  };
+  const int bands = std::clamp(threads, 1, std::max(1, cloud.height));
+  std::vector<std::vector<KeptPixel>> band_kept(static_cast<size_t>(bands));
+  auto bandRows = [&](int b) {
+    return std::make_pair(b * cloud.height / bands, (b + 1) * cloud.height / bands);
+  };
+  for (int b = 0; b < bands; ++b) {  // reserved here: no allocation inside the parallel loop
+    const auto [from, to] = bandRows(b);
+    band_kept[static_cast<size_t>(b)].reserve(static_cast<size_t>(to - from) *
+                                              static_cast<size_t>(cloud.width));
+  }
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+  for (int b = 0; b < bands; ++b) {
+    std::vector<KeptPixel>& kept = band_kept[static_cast<size_t>(b)];
+    const auto [from, to] = bandRows(b);
+    for (int v = from; v < to; ++v) {
+      const float* prob_row = probability.ptr<float>(v);
+      auto visit = [&](int u) {
+        const int i = v * cloud.width + u;
+        if (!(prob_row[u] > threshold) || !cloud.isValid(i)) return;
+        const uint64_t key = inv > 0 ? packVoxelCell(voxelCell(cloud.points[i], inv)) : 0;
+        kept.push_back({i, -1, key});
+      };
+      constexpr int kBlock = 16;
+      int u = 0;
+      for (; u + kBlock <= cloud.width; u += kBlock) {
+        int any = 0;
+        for (int k = 0; k < kBlock; ++k) any |= prob_row[u + k] > threshold;
+        if (!any) continue;
+        for (int k = 0; k < kBlock; ++k) visit(u + k);
+      }
+      for (; u < cloud.width; ++u) visit(u);
+    }
+  }
+
+  // Pass 2, in image order: group the kept pixels by voxel (each pixel is its own group at voxel
+  // size 0), and sum each group in that order. A voxel spans several pixels, so the key of the
+  // pixel to the left or above is usually the same: remembering their groups skips most hash
+  // lookups, each of which costs an integer division by the table's prime size. A remembered key
+  // always maps to its group.
   constexpr uint64_t kNoKey = ~uint64_t{0};  // packVoxelCell never sets the top bit
   std::unordered_map<uint64_t, int> group_of_key;
   uint64_t left_key = kNoKey;
   int left_group = -1;
   std::vector<uint64_t> above_key(static_cast<size_t>(cloud.width), kNoKey);
   std::vector<int> above_group(static_cast<size_t>(cloud.width), -1);
-  struct KeptPixel {
-    int pixel, group;
-  };
-  std::vector<KeptPixel> kept;  // in image order
   std::vector<Voxel> groups;
-  const float threshold = params.min_probability;
-  for (int v = 0; v < cloud.height; ++v) {
-    const float* prob_row = probability.ptr<float>(v);
-    auto visit = [&](int u) {
-      const float p = prob_row[u];
-      const int i = v * cloud.width + u;
-      if (!(p > threshold) || !cloud.isValid(i)) return;
+  for (std::vector<KeptPixel>& kept : band_kept) {
+    for (KeptPixel& k : kept) {
       int g = static_cast<int>(groups.size());
       if (inv > 0) {
-        const uint64_t key = packVoxelCell(voxelCell(cloud.points[i], inv));
-        if (key == left_key) {
+        const size_t u = static_cast<size_t>(k.pixel % cloud.width);
+        if (k.key == left_key) {
           g = left_group;
-        } else if (key == above_key[u]) {
+        } else if (k.key == above_key[u]) {
           g = above_group[u];
         } else {
-          g = group_of_key.try_emplace(key, g).first->second;
+          g = group_of_key.try_emplace(k.key, g).first->second;
         }
-        left_key = above_key[u] = key;
+        left_key = above_key[u] = k.key;
         left_group = above_group[u] = g;
       }
       if (g == static_cast<int>(groups.size())) groups.emplace_back();
-      Voxel& vox = groups[g];
-      vox.sum += cloud.points[i];
-      vox.probability_sum += p;
+      Voxel& vox = groups[static_cast<size_t>(g)];
+      const int v = k.pixel / cloud.width;
+      vox.sum += cloud.points[static_cast<size_t>(k.pixel)];
+      vox.probability_sum += probability.ptr<float>(v)[k.pixel - v * cloud.width];
       ++vox.count;
-      kept.push_back({i, g});
-    };
-    // Most of an image is background, below epsilon: a block of 16 pixels with none above it is
-    // skipped after 16 branch-free comparisons (a test and a branch per pixel cost 10
-    // instructions, 3 M per 640x480 image, a fifth of the cat's soft segment).
-    constexpr int kBlock = 16;
-    int u = 0;
-    for (; u + kBlock <= cloud.width; u += kBlock) {
-      int any = 0;
-      for (int k = 0; k < kBlock; ++k) any |= prob_row[u + k] > threshold;
-      if (!any) continue;
-      for (int k = 0; k < kBlock; ++k) visit(u + k);
+      k.group = g;
     }
-    for (; u < cloud.width; ++u) visit(u);
   }
-  // Pass 2: the representative of a group is its pixel nearest the centroid, which lies on the
-  // surface even when the centroid of a voxel straddling a depth edge does not.
-  std::vector<int> representative(groups.size(), -1);
-  std::vector<float> best_d2(groups.size(), std::numeric_limits<float>::max());
-  for (const KeptPixel& k : kept) {
-    const Voxel& vox = groups[k.group];
-    const float d2 =
-        (cloud.points[k.pixel] - vox.sum / static_cast<float>(vox.count)).squaredNorm();
-    if (d2 < best_d2[k.group]) {
-      best_d2[k.group] = d2;
-      representative[k.group] = k.pixel;
+
+  // Pass 3, in the bands again: the representative of a group is its pixel nearest the centroid,
+  // which lies on the surface even when the centroid of a voxel straddling a depth edge does not.
+  // Each band keeps its nearest per group, and the bands are merged in image order with ties to the
+  // earlier, as one scan in image order would.
+  std::vector<Eigen::Vector3f> centroids(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    centroids[g] = groups[g].sum / static_cast<float>(groups[g].count);
+  }
+  std::vector<std::vector<float>> band_d2(static_cast<size_t>(bands));
+  std::vector<std::vector<int>> band_pixel(static_cast<size_t>(bands));
+  for (int b = 0; b < bands; ++b) {
+    band_d2[static_cast<size_t>(b)].assign(groups.size(), std::numeric_limits<float>::max());
+    band_pixel[static_cast<size_t>(b)].assign(groups.size(), -1);
+  }
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+  for (int b = 0; b < bands; ++b) {
+    std::vector<float>& best_d2 = band_d2[static_cast<size_t>(b)];
+    std::vector<int>& best = band_pixel[static_cast<size_t>(b)];
+    for (const KeptPixel& k : band_kept[static_cast<size_t>(b)]) {
+      const auto g = static_cast<size_t>(k.group);
+      const float d2 = (cloud.points[static_cast<size_t>(k.pixel)] - centroids[g]).squaredNorm();
+      if (d2 < best_d2[g]) {
+        best_d2[g] = d2;
+        best[g] = k.pixel;
+      }
+    }
+  }
+  std::vector<int> representative = std::move(band_pixel.front());
+  for (size_t b = 1; b < band_d2.size(); ++b) {
+    for (size_t g = 0; g < groups.size(); ++g) {
+      if (band_d2[b][g] < band_d2.front()[g]) {
+        band_d2.front()[g] = band_d2[b][g];
+        representative[g] = band_pixel[b][g];
+      }
     }
   }
 
@@ -136,7 +185,7 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
     const Eigen::Vector3f& normal = normals[g];
     if (!normal.allFinite()) continue;
     const Voxel& vox = groups[g];
-    segment.points.push_back(vox.sum / static_cast<float>(vox.count));
+    segment.points.push_back(centroids[g]);
     segment.normals.push_back(normal);
     segment.confidence.push_back(static_cast<float>(vox.probability_sum / vox.count));
     segment.pixel.push_back(representative[g]);

@@ -219,7 +219,6 @@ TEST_F(SoftSegmentTest, VoxelsMatchAPlainGroupingOnARoughSurface) {
   const OrganizedCloud cloud = cloudFromDepth(depth, k_, 1.0);
   SoftSegmentParams params;
   params.voxel_size = 0.02f;
-  const SoftSegment s = buildSoftSegment(cloud, prob_, static_cast<float>(k_.fx), params, 2);
 
   // The same grouping written plainly: voxels by std::floor, in order of their first pixel, sums
   // in pixel order, the representative the first pixel nearest the centroid.
@@ -257,19 +256,24 @@ TEST_F(SoftSegmentTest, VoxelsMatchAPlainGroupingOnARoughSurface) {
   ASSERT_GT(groups.size(), 300u);
   ASSERT_LT(groups.size(), 4000u) << "voxels should hold several pixels";
   // The segment keeps the groups whose representative has a normal (a few at the image border
-  // have none), in the same order.
-  size_t j = 0, without_normal = 0;
-  for (const Group& group : groups) {
-    if (j == s.size() || s.pixel[j] != group.representative) {
-      ++without_normal;
-      continue;
+  // have none), in the same order, whatever the number of row bands it is scanned in (voxels
+  // span the bands' borders; 3 bands split the 80 rows unevenly).
+  for (int threads : {1, 2, 3}) {
+    const SoftSegment s =
+        buildSoftSegment(cloud, prob_, static_cast<float>(k_.fx), params, threads);
+    size_t j = 0, without_normal = 0;
+    for (const Group& group : groups) {
+      if (j == s.size() || s.pixel[j] != group.representative) {
+        ++without_normal;
+        continue;
+      }
+      EXPECT_EQ(s.points[j], group.sum / static_cast<float>(group.count)) << j;
+      EXPECT_EQ(s.confidence[j], static_cast<float>(group.probability / group.count)) << j;
+      ++j;
     }
-    EXPECT_EQ(s.points[j], group.sum / static_cast<float>(group.count)) << j;
-    EXPECT_EQ(s.confidence[j], static_cast<float>(group.probability / group.count)) << j;
-    ++j;
+    EXPECT_EQ(j, s.size()) << threads << " threads";
+    EXPECT_LT(without_normal, groups.size() / 50) << threads << " threads";
   }
-  EXPECT_EQ(j, s.size());
-  EXPECT_LT(without_normal, groups.size() / 50);
 }
 
 TEST_F(SoftSegmentTest, PixelsWithoutDepthAreLeftOutAndEmptyIsFine) {
