@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -132,54 +133,37 @@ BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(verification, dove, dove)->Unit(benchmark::kMicrosecond);
-// One thread (CPU time per core), then all cores: process CPU time over all threads and wall time;
-// each with every base (consensus:0) and with the default consensus stop (consensus:1). A
-// repetition runs every seed once. Registered in a loop: they differ only in frame, threads and
-// consensus.
-const bool kFullEstimateRegistered = [] {
-  const std::pair<const char*, const Frame& (*)()> frames[] = {
-      {"fullEstimate/cat", cat}, {"fullEstimate/dove", dove}, {"fullEstimate/box", box}};
-  for (const auto& [name, get] : frames) {
-    benchmark::RegisterBenchmark(name, fullEstimate, get)
+// Per frame: the soft segment, the whole estimate (with every base, consensus:0, and with the
+// default consensus stop, consensus:1) and the few-base settings. Each on one thread (CPU time per
+// core) and, where threads:0 or no thread count is named, on all cores: process CPU time over all
+// threads and wall time. A repetition of an estimate runs every seed once.
+const bool kPerFrameRegistered = [] {
+  auto onAllCores = [](benchmark::internal::Benchmark* b) {
+    b->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
+  };
+  const std::pair<std::string, const Frame& (*)()> frames[] = {
+      {"cat", cat}, {"dove", dove}, {"box", box}};
+  for (const auto& [frame, get] : frames) {
+    const std::string soft = "softSegment/" + frame, full = "fullEstimate/" + frame;
+    benchmark::RegisterBenchmark(soft.c_str(), softSegment, get)
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Unit(benchmark::kMillisecond);
+    onAllCores(
+        benchmark::RegisterBenchmark(soft.c_str(), softSegment, get)->ArgName("threads")->Arg(0));
+    benchmark::RegisterBenchmark(full.c_str(), fullEstimate, get)
         ->ArgsProduct({{1}, {0, 1}})
         ->ArgNames({"threads", "consensus"})
         ->Iterations(kFullEstimateSeeds)
         ->Unit(benchmark::kMillisecond);
-  }
-  for (const auto& [name, get] : frames) {
-    benchmark::RegisterBenchmark(name, fullEstimate, get)
-        ->ArgsProduct({{0}, {0, 1}})
-        ->ArgNames({"threads", "consensus"})
-        ->Iterations(kFullEstimateSeeds)
-        ->MeasureProcessCPUTime()
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
-  }
-  // The soft segment on one thread, then on all cores (threads:0, wall time).
-  const std::pair<const char*, const Frame& (*)()> soft[] = {
-      {"softSegment/cat", cat}, {"softSegment/dove", dove}, {"softSegment/box", box}};
-  for (const auto& [name, get] : soft) {
-    benchmark::RegisterBenchmark(name, softSegment, get)
-        ->ArgName("threads")
-        ->Arg(1)
-        ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(name, softSegment, get)
-        ->ArgName("threads")
-        ->Arg(0)
-        ->MeasureProcessCPUTime()
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
-  }
-  const std::pair<const char*, const Frame& (*)()> few[] = {
-      {"fewBases/cat", cat}, {"fewBases/dove", dove}, {"fewBases/box", box}};
-  for (const auto& [name, get] : few) {
-    benchmark::RegisterBenchmark(name, fewBases, get)
-        ->ArgsProduct({{5, 10, 20}, {0, 100}})
-        ->ArgNames({"bases", "draw_budget"})
-        ->Iterations(kFullEstimateSeeds)
-        ->MeasureProcessCPUTime()
-        ->UseRealTime()
-        ->Unit(benchmark::kMillisecond);
+    onAllCores(benchmark::RegisterBenchmark(full.c_str(), fullEstimate, get)
+                   ->ArgsProduct({{0}, {0, 1}})
+                   ->ArgNames({"threads", "consensus"})
+                   ->Iterations(kFullEstimateSeeds));
+    onAllCores(benchmark::RegisterBenchmark(("fewBases/" + frame).c_str(), fewBases, get)
+                   ->ArgsProduct({{5, 10, 20}, {0, 100}})
+                   ->ArgNames({"bases", "draw_budget"})
+                   ->Iterations(kFullEstimateSeeds));
   }
   return true;
 }();
