@@ -3,9 +3,10 @@
 //   STOCS_DATASETS=../shared/datasets build/.../stocs_stage_benchmarks
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
-#include <omp.h>
 
+#include <algorithm>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -22,7 +23,9 @@ namespace {
 void softSegment(benchmark::State& state, const Frame& (*get)()) {
   const Frame& f = get();
   const PipelineParams p = benchmarkParams();
-  const int threads = state.range(0) > 0 ? static_cast<int>(state.range(0)) : omp_get_max_threads();
+  const int threads = state.range(0) > 0
+                          ? static_cast<int>(state.range(0))
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
   for (auto _ : state) {
     benchmark::DoNotOptimize(buildSoftSegment(f.cloud, f.probability, f.focal, p.segment, threads));
   }
