@@ -112,9 +112,9 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
   std::vector<Voxel> groups;
   for (std::vector<KeptPixel>& kept : band_kept) {
     for (KeptPixel& k : kept) {
+      const int v = k.pixel / cloud.width, u = k.pixel - v * cloud.width;
       int g = static_cast<int>(groups.size());
       if (inv > 0) {
-        const size_t u = static_cast<size_t>(k.pixel % cloud.width);
         if (k.key == left_key) {
           g = left_group;
         } else if (k.key == above_key[u]) {
@@ -127,9 +127,8 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
       }
       if (g == static_cast<int>(groups.size())) groups.emplace_back();
       Voxel& vox = groups[static_cast<size_t>(g)];
-      const int v = k.pixel / cloud.width;
       vox.sum += cloud.points[static_cast<size_t>(k.pixel)];
-      vox.probability_sum += probability.ptr<float>(v)[k.pixel - v * cloud.width];
+      vox.probability_sum += probability.ptr<float>(v)[u];
       ++vox.count;
       k.group = g;
     }
