@@ -5,7 +5,10 @@
 // Points are voxel centroids (default 5 mm, the authors' scene resolution): a voxel's confidence is
 // the mean probability of its pixels and its normal is estimated at the pixel nearest its centroid.
 // This bounds the work of every later stage by the object's surface area rather than by its
-// distance to the camera.
+// distance to the camera. Where a voxel spans many pixels (near, or a long focal length), the
+// pixel scan takes every s-th row and column: a 5 mm voxel covers 9 x 9 pixels of YCB-Video at
+// 0.6 m, and a centroid of 81 pixels instead of 4 to 9 gave no better poses (BENCHMARKS.md, "Pixel
+// stride") for a third more time per object.
 
 #include <Eigen/Core>
 #include <vector>
@@ -22,6 +25,10 @@ namespace stocs {
 struct SoftSegmentParams {
   float min_probability = 0.1f;  ///< epsilon of eq. (2); pixels at or below it are left out
   float voxel_size = 0.005f;     ///< metres; 0 keeps every pixel as a point
+  /// Pixel samples across a voxel at the segment's far depth (the 90th percentile of its pixels'):
+  /// the scan takes every s-th row and column, s = floor(voxel footprint in pixels / this), at
+  /// least 1. 0 scans every pixel.
+  float samples_per_voxel = 2.0f;
   OrganizedNormalParams normals;
 
   /// Throws InputError naming the first value out of range.
@@ -43,12 +50,18 @@ struct SoftSegment {
 };
 
 /// Builds the soft segment from an organized cloud and a CV_32FC1 probability image of the same
-/// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods. Pixels without depth
+/// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods and the voxels'
+/// pixel footprint. Pixels without depth
 /// or without a normal are left out; the result may be empty. Throws InputError on a size or type
 /// mismatch. The pixel scan, the representatives and the normals run on `threads` threads (the
 /// grouping between them in image order); the result does not depend on it.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
                              float focal_px, const SoftSegmentParams& params, int threads = 1);
+
+/// The pixel stride of buildSoftSegment's scan (see SoftSegmentParams::samples_per_voxel): 1 when
+/// no pixel is above epsilon. Expects the checks of buildSoftSegment passed.
+int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, float focal_px,
+                       const SoftSegmentParams& params);
 
 /// Splits the segment into instance regions with a boundary map (CV_8UC1, same size as the image;
 /// values >= 128 are object interior, lower values are boundaries, as in the StoCS `edge.png` and

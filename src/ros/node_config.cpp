@@ -256,6 +256,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   MapReader segment = reader.map("segment");
   segment.get("min_probability", p.segment.min_probability);
   segment.get("voxel_size", p.segment.voxel_size);
+  segment.get("samples_per_voxel", p.segment.samples_per_voxel);
   MapReader normals = segment.map("normals");
   normals.get("radius", p.segment.normals.radius);
   normals.get("samples_per_axis", p.segment.normals.samples_per_axis);

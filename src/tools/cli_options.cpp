@@ -13,6 +13,10 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
       ->group(seg);
   cmd.add_option("--voxel", p.segment.voxel_size, "Segment voxel size, m (0: every pixel)")
       ->group(seg);
+  cmd.add_option("--samples-per-voxel", p.segment.samples_per_voxel,
+                 "Pixel samples across a voxel at the segment's far depth; sets the scan's pixel "
+                 "stride (0: every pixel)")
+      ->group(seg);
   cmd.add_option("--normal-radius", p.segment.normals.radius, "Scene normal radius, m")->group(seg);
 
   const std::string model = "Model preprocessing";

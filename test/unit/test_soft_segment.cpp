@@ -1,6 +1,7 @@
 // Depth to organized cloud, probability images, and the soft segment of eqs. (1)-(3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -298,6 +299,60 @@ TEST_F(SoftSegmentTest, MismatchesAndBadParametersAreErrors) {
   SoftSegmentParams bad;
   bad.min_probability = 1.0f;
   EXPECT_THROW(buildSoftSegment(cloud_, prob_, 120, bad), InputError);
+  for (float samples : {0.5f, -1.0f, 101.0f, std::numeric_limits<float>::quiet_NaN()}) {
+    SoftSegmentParams thin;
+    thin.samples_per_voxel = samples;
+    EXPECT_THROW(buildSoftSegment(cloud_, prob_, 120, thin), InputError) << samples;
+  }
+}
+
+TEST_F(SoftSegmentTest, TheScanThinsWhereAVoxelSpansManyPixels) {
+  // Voxels of 5 cm on the wall 1 m away span 6 x 5.5 pixels: two samples across take every 3rd
+  // row and column.
+  SoftSegmentParams params;
+  params.voxel_size = 0.05f;
+  const float focal = static_cast<float>(k_.fx);
+  ASSERT_EQ(segmentPixelStride(cloud_, prob_, focal, params), 3);
+  const SoftSegment thinned = buildSoftSegment(cloud_, prob_, focal, params);
+  params.samples_per_voxel = 0;
+  ASSERT_EQ(segmentPixelStride(cloud_, prob_, focal, params), 1);
+  const SoftSegment every = buildSoftSegment(cloud_, prob_, focal, params);
+  // Every voxel but a sliver at the segment's edge has samples; only the lattice was read.
+  EXPECT_LE(thinned.size(), every.size());
+  EXPECT_GE(thinned.size(), every.size() * 9 / 10);
+  auto onLattice = [](int pixel) { return pixel % 100 % 3 == 0 && pixel / 100 % 3 == 0; };
+  EXPECT_TRUE(std::all_of(thinned.pixel.begin(), thinned.pixel.end(), onLattice));
+  EXPECT_FALSE(std::all_of(every.pixel.begin(), every.pixel.end(), onLattice));
+  for (size_t i = 0; i < thinned.size(); ++i) {
+    EXPECT_GT(thinned.confidence[i], 0.1f);
+    EXPECT_LT((cloud_.points[thinned.pixel[i]] - thinned.points[i]).norm(),
+              0.05f * std::sqrt(2.0f));
+  }
+
+  // Voxels of 1 cm span 1.2 pixels: every pixel is read, and the segment is the full scan's.
+  params.voxel_size = 0.01f;
+  EXPECT_EQ(segmentPixelStride(cloud_, prob_, focal, params), 1);
+  const SoftSegment small_every = buildSoftSegment(cloud_, prob_, focal, params);
+  params.samples_per_voxel = 2;
+  EXPECT_EQ(buildSoftSegment(cloud_, prob_, focal, params).points, small_every.points);
+}
+
+TEST_F(SoftSegmentTest, TheFarPixelsOfTheSegmentSetTheStride) {
+  // A wall at 0.5 m on the left and at 2 m on the right: 5 cm voxels span 12 and 3 pixels.
+  cv::Mat depth(80, 100, CV_32FC1, cv::Scalar(0.5));
+  depth(cv::Rect(50, 0, 50, 80)) = 2.0;
+  const OrganizedCloud cloud = cloudFromDepth(depth, k_, 1.0);
+  SoftSegmentParams params;
+  params.voxel_size = 0.05f;
+  const float focal = static_cast<float>(k_.fx);
+  cv::Mat near_only(80, 100, CV_32FC1, cv::Scalar(0.0));
+  near_only(cv::Rect(0, 0, 50, 80)) = 0.9;
+  EXPECT_EQ(segmentPixelStride(cloud, near_only, focal, params), 6);
+  // Half the segment far: its 90th percentile is the far wall.
+  EXPECT_EQ(segmentPixelStride(cloud, cv::Mat(80, 100, CV_32FC1, cv::Scalar(0.9)), focal, params),
+            1);
+  EXPECT_EQ(segmentPixelStride(cloud, cv::Mat(80, 100, CV_32FC1, cv::Scalar(0.0)), focal, params),
+            1);
 }
 
 TEST_F(SoftSegmentTest, RegionsComeFromTheBoundaryMap) {

@@ -62,6 +62,7 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   const stocs::PipelineParams& p = c.estimation;
   EXPECT_EQ(p.segment.min_probability, d.segment.min_probability);
   EXPECT_EQ(p.segment.voxel_size, d.segment.voxel_size);
+  EXPECT_EQ(p.segment.samples_per_voxel, d.segment.samples_per_voxel);
   EXPECT_EQ(p.segment.normals.radius, d.segment.normals.radius);
   EXPECT_EQ(p.segment.normals.samples_per_axis, d.segment.normals.samples_per_axis);
   EXPECT_EQ(p.segment.normals.min_neighbours, d.segment.normals.min_neighbours);
@@ -125,7 +126,7 @@ input:
 output: {frame_prefix: "est_", tf: false, markers: false, estimate_on_frames: false}
 model_cache: none
 estimation:
-  segment: {min_probability: 0.3, normals: {radius: 0.02}}
+  segment: {min_probability: 0.3, samples_per_voxel: 0, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
   stocs: {bases: 40, base_draw_budget: 120, consensus_bases: 6, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
           finished_per_base: 7, icp: {enabled: false, candidates: 3}, free_space: {enabled: false, margin: 0.02},
@@ -163,6 +164,7 @@ estimation:
   EXPECT_FALSE(c.output.tf || c.output.markers || c.output.estimate_on_frames);
   EXPECT_TRUE(c.model_cache.empty());
   EXPECT_FLOAT_EQ(c.estimation.segment.min_probability, 0.3f);
+  EXPECT_EQ(c.estimation.segment.samples_per_voxel, 0.0f);
   EXPECT_FLOAT_EQ(c.estimation.segment.normals.radius, 0.02f);
   EXPECT_FLOAT_EQ(c.estimation.model.ppf.angle_step_deg, 12.0f);
   EXPECT_EQ(c.estimation.stocs.bases, 40);
@@ -194,6 +196,8 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
       {box + "estimation: {stocs: {bases: 2.5}}\n", "estimation.stocs.bases: expected an integer"},
       {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
       {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
+      {box + "estimation: {segment: {samples_per_voxel: 0.5}}\n",
+       "samples per voxel 0.5 is neither 0"},
       {box + "estimation: {stocs: {instances: 0}}\n", "instances 0 is outside [1, 100]"},
       {box + "estimation: {stocs: {min_normal_agreement: 5}}\n",
        "minimum normal agreement 5 is outside [0, 4]"},
