@@ -46,6 +46,7 @@ struct BenchOptions {
   int budget_bases = 100000;
   double run_timeout = 0;
   bool no_plots = false;
+  bool cold = false;
   PipelineParams params;
   ModelOptions model;
   /// The estimation options of the command line, passed on to every `stocs estimate`.
@@ -146,6 +147,7 @@ std::vector<std::string> childCommand(const BenchOptions& o, const BenchInput& i
                                    r.results.string(),
                                    "--per-object",
                                    r.per_object.string()};
+  if (!o.cold) argv.push_back("--warm-up");
   if (!o.scenes.empty()) argv.insert(argv.end(), {"--scenes", joined(o.scenes)});
   if (!o.objects.empty()) argv.insert(argv.end(), {"--objects", joined(o.objects)});
   for (const CLI::Option* opt : o.forwarded) {
@@ -249,6 +251,7 @@ int runBench(BenchOptions o) {
   fs::create_directories(o.out);
   BenchData d;
   d.command = o.command;
+  d.warm = !o.cold;
   d.methods = o.methods;
   d.swept_methods = o.sweep_methods.empty() ? o.methods : o.sweep_methods;
   if (!o.no_threshold_sweep) d.thresholds = o.thresholds;
@@ -318,6 +321,9 @@ Command registerBench(CLI::App& app) {
   cmd->add_option("--run-timeout", o->run_timeout,
                   "Seconds after which a run is killed and counted as failed (0: no limit)");
   cmd->add_flag("--no-plots", o->no_plots, "Write no PNG plots (no gnuplot needed)");
+  cmd->add_flag("--cold", o->cold,
+                "Time every run's first object cold: without `stocs estimate --warm-up`, its time "
+                "includes the process's first-call costs (thread pools, first-touch memory)");
   const size_t before = cmd->get_options().size();
   addModelOptions(*cmd, o->model);
   addPipelineOptions(*cmd, o->params);

@@ -336,8 +336,14 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
       fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d.command, machine());
   md += "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() +
         "Time per object: the method's wall time for one object (after the frame's images and the "
-        "models are loaded), median and 90th percentile over the targets the run reported. CPU: "
-        "the CPU time of the process, all its threads, during the same call; on a shared machine "
+        "models are loaded), median and 90th percentile over the targets the run reported" +
+        std::string(d.warm ? "; every run first estimated its first object once, untimed "
+                             "(`stocs estimate --warm-up`), so that no target pays for the "
+                             "process's first calls (thread pools, first-touch memory)"
+                           : "; cold (`--cold`): the first target of every run includes the "
+                             "process's first-call costs") +
+        ". CPU: the CPU time of the process, all its threads, during the same call; on a shared "
+        "machine "
         "it is not inflated by other processes as wall time is. Peak "
         "memory: the maximum resident set size of the `stocs estimate` process that ran the "
         "method on the dataset (one process per run). Failed runs: runs that crashed or exited "

@@ -26,6 +26,21 @@ TEST(Cli, EstimateWritesBopResultsCloseToTheTruth) {
   EXPECT_LT(Eigen::AngleAxisd(results[0].R.transpose() * truth.linear().cast<double>()).angle(),
             0.05);
   EXPECT_GT(results[0].time, 0.0);
+
+  // A warm-up estimate before the timed one changes no result.
+  ASSERT_EQ(test::runCommand(kTool + " estimate --warm-up --dataset " + (root / "data").string() +
+                                 " --out " + (root / "w.csv").string() + " --cache-dir " +
+                                 (root / "cache").string(),
+                             out),
+            0)
+      << out;
+  EXPECT_NE(out.find("warm-up: object 1 of scene 0 image 0 estimated once, untimed"),
+            std::string::npos)
+      << out;
+  const std::vector<BopResult> warm = readBopResults(root / "w.csv");
+  ASSERT_EQ(warm.size(), 1u);
+  EXPECT_EQ(warm[0].R, results[0].R);
+  EXPECT_EQ(warm[0].t_mm, results[0].t_mm);
 }
 
 TEST(Cli, EveryRegisteredMethodRunsAndUnknownOnesAreRefused) {

@@ -343,6 +343,18 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   EXPECT_NE(report.find("![accuracy_threshold, data/real](plots/accuracy_threshold_data_real.png)"),
             std::string::npos);
   EXPECT_EQ(report.find("## Notes and failures"), std::string::npos) << report;
+  // Every run began with an untimed estimate of its first object, and the report says so.
+  EXPECT_NE(report.find("once, untimed"), std::string::npos) << report;
+  int logs = 0, warmed = 0;
+  for (const auto& f : std::filesystem::recursive_directory_iterator(out)) {
+    if (f.path().extension() != ".log") continue;
+    std::ifstream in(f.path());
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ++logs;
+    warmed += text.find("estimated once, untimed") != std::string::npos;
+  }
+  EXPECT_EQ(logs, 12);
+  EXPECT_EQ(warmed, logs);
 }
 
 TEST_F(EvalCliTest, BenchSurvivesAFailingRun) {
