@@ -7,8 +7,9 @@
 // This bounds the work of every later stage by the object's surface area rather than by its
 // distance to the camera. Where a voxel spans many pixels (near, or a long focal length), the
 // pixel scan takes every s-th row and column: a 5 mm voxel covers 9 x 9 pixels of YCB-Video at
-// 0.6 m, and a centroid of 81 pixels instead of 4 to 9 gave no better poses (BENCHMARKS.md, "Pixel
-// stride") for a third more time per object.
+// 0.6 m, and a centroid of 81 pixels instead of 4 to 9 gave no better poses for a third more time
+// per object (BENCHMARKS.md, "ICP about the model's centre, and a pixel stride in the soft
+// segment").
 
 #include <Eigen/Core>
 #include <vector>
@@ -50,11 +51,11 @@ struct SoftSegment {
 };
 
 /// Builds the soft segment from an organized cloud and a CV_32FC1 probability image of the same
-/// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods and the voxels'
-/// pixel footprint. Pixels without depth
-/// or without a normal are left out; the result may be empty. Throws InputError on a size or type
-/// mismatch. The pixel scan, the representatives and the normals run on `threads` threads (the
-/// grouping between them in image order); the result does not depend on it.
+/// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods and the voxels' pixel
+/// footprint. Pixels without depth or without a normal are left out; the result may be empty.
+/// Throws InputError on a size or type mismatch. The pixel scan, the representatives and the
+/// normals run on `threads` threads (the grouping between them in image order); the result does not
+/// depend on it.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
                              float focal_px, const SoftSegmentParams& params, int threads = 1);
 

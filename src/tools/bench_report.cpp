@@ -343,9 +343,8 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
                            : "; cold (`--cold`): the first target of every run includes the "
                              "process's first-call costs") +
         ". CPU: the CPU time of the process, all its threads, during the same call; on a shared "
-        "machine "
-        "it is not inflated by other processes as wall time is. Peak "
-        "memory: the maximum resident set size of the `stocs estimate` process that ran the "
+        "machine it is not inflated by other processes as wall time is. Peak memory: the maximum "
+        "resident set size of the `stocs estimate` process that ran the "
         "method on the dataset (one process per run). Failed runs: runs that crashed or exited "
         "with an error; their targets count as missing.\n";
   writeTextFile(out / "summary.csv", main_table.csv());
