@@ -78,6 +78,11 @@ TEST(Cli, BadInputsExitNonZeroWithAMessage) {
             0);
   EXPECT_NE(out.find("bases 0"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
+                                 " --out x.csv --samples-per-voxel 0.5",
+                             out),
+            2);
+  EXPECT_NE(out.find("segment samples per voxel 0.5 is neither 0"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
                                  " --out x.csv --scenes 9",
                              out),
             2);
