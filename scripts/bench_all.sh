@@ -17,7 +17,7 @@
 #            segmentation, noise-free depth), and the dove bin without its boundary map;
 #            summarised in seeds/summary.md
 #   equal/   issue 6's side by side at equal accuracy: every method at its defaults beside StoCS at
-#            5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all five
+#            2, 3, 4, 5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all five
 #            methods, both StoCS variants swept) and on the simulator presets of lmo-cat,
 #            rutgers-packed and ycbv-0000 (sim/: StoCS swept beside PPF, the fastest baseline; the
 #            4PCS methods take half an hour on these presets, see sim/ above); each report's "Speed
@@ -62,7 +62,7 @@ fi
 
 if [[ $parts == *" equal "* ]]; then
   note "equal accuracy: start"
-  swept=(--no-threshold-sweep --no-budget-sweep --base-counts 5,10,20,50,100 --cache-dir "$out/cache"
+  swept=(--no-threshold-sweep --no-budget-sweep --base-counts 2,3,4,5,10,20,50,100 --cache-dir "$out/cache"
          --run-timeout 300)
   "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --prob real \
     --methods stocs,stocs-hard,fpcs,kfpcs,ppf --sweep-methods stocs,stocs-hard "${swept[@]}" \
