@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <limits>
+#include <mutex>
 #include <unordered_map>
 
 #include "stocs/neighbourhood_grid.h"
@@ -96,7 +97,10 @@ class LcpScorer {
   bool advance(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                PartialScore& partial, uint32_t end, float must_reach) const;
 
-  NeighbourhoodGrid grid_;                                   // all points
+  // All points. With regions every base is drawn inside one, so only a caller that scores against
+  // the whole segment needs it: then it is built on first use (half the grid work of a segment).
+  mutable NeighbourhoodGrid grid_;
+  mutable std::once_flag grid_once_;
   std::unordered_map<int, NeighbourhoodGrid> region_grids_;  // the points of each region
   NeighbourhoodGrid empty_;
   float cos_normal_;

@@ -29,7 +29,8 @@ void LcpParams::validate() const {
 LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
     : segment_(segment),
       params_((params.validate(), params)),  // before the grid uses delta_s
-      grid_(segment.points, params.distance),
+      grid_(segment.region.empty() ? NeighbourhoodGrid(segment.points, params.distance)
+                                   : NeighbourhoodGrid()),
       cos_normal_(std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)),
       sin_normal_(params.normal_angle_deg >= 90.0f
                       ? 1.0f
@@ -47,7 +48,12 @@ LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
 }
 
 const NeighbourhoodGrid& LcpScorer::gridOf(int region) const {
-  if (region < 0 || segment_.region.empty()) return grid_;
+  if (segment_.region.empty()) return grid_;
+  if (region < 0) {
+    std::call_once(grid_once_,
+                   [&] { grid_ = NeighbourhoodGrid(segment_.points, params_.distance); });
+    return grid_;
+  }
   const auto it = region_grids_.find(region);
   return it == region_grids_.end() ? empty_ : it->second;
 }

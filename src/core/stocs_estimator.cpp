@@ -196,8 +196,9 @@ struct SegmentIndexes {
   std::optional<IcpRefiner> icp;  // empty when ICP is off
 };
 
-SegmentIndexes buildIndexes(const SoftSegment& segment, const StocsParams& params, int threads) {
-  SegmentIndexes out;
+/// Fills `out` in place: the scorer holds a once_flag and cannot move.
+void buildIndexes(const SoftSegment& segment, const StocsParams& params, int threads,
+                  SegmentIndexes& out) {
   std::exception_ptr error;  // an exception must not leave an OpenMP region
   auto guarded = [&](auto&& build) {
     try {
@@ -217,7 +218,6 @@ SegmentIndexes buildIndexes(const SoftSegment& segment, const StocsParams& param
     });
   }
   if (error) std::rethrow_exception(error);
-  return out;
 }
 
 }  // namespace
@@ -302,7 +302,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   }
   const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
   const BaseSampler sampler(segment, model_.ppf_map, params_.base);
-  const SegmentIndexes indexes = buildIndexes(segment, params_, threads);
+  SegmentIndexes indexes;
+  buildIndexes(segment, params_, threads, indexes);
   const LcpScorer& scorer = *indexes.scorer;
   const ObjectModel& model = model_.model;
   const bool budgeted = params_.time_budget > 0;

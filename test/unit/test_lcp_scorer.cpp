@@ -95,6 +95,12 @@ TEST(LcpScorer, RegionsRestrictTheClosestPointSearch) {
   EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 1), 0.5f + 0.5f + 0.2f);
   // Region 2 holds only s1, whose normal agrees with no model point.
   EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), 2), 0.0f);
+  // Region -1 still means every point (its grid is built on first use when there are regions).
+  const SoftSegment whole = handMadeSegment();
+  const LcpScorer plain(whole, LcpParams{});
+  EXPECT_FLOAT_EQ(scorer.score(model, Eigen::Isometry3f::Identity(), -1),
+                  plain.score(model, Eigen::Isometry3f::Identity(), -1));
+  EXPECT_EQ(scorer.closest(segment.points[1], -1), 1);
 }
 
 // A flat patch of model points in random order, half of them over the segment, and one segment
