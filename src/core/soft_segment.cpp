@@ -6,9 +6,9 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 #include <unordered_map>
 
+#include "stocs/boundary_regions.h"
 #include "stocs/error.h"
 #include "stocs/voxel_key.h"
 
@@ -237,13 +237,11 @@ void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, 
     throw InputError(fmt::format("boundary map is {}x{} but the image is {}x{}", boundary_map.cols,
                                  boundary_map.rows, width, height));
   }
-  cv::Mat interior = boundary_map >= 128;
-  cv::Mat labels;
-  cv::connectedComponents(interior, labels, 4, CV_32S);
+  const BoundaryRegions regions(boundary_map);
   segment.region.resize(segment.size());
   for (size_t i = 0; i < segment.size(); ++i) {
-    const int label = labels.at<int>(segment.pixel[i] / width, segment.pixel[i] % width);
-    segment.region[i] = label > 0 ? label : -1;  // component 0 is the boundary itself
+    const int region = regions.at(segment.pixel[i] % width, segment.pixel[i] / width);
+    segment.region[i] = region > 0 ? region : -1;  // region 0 is the boundary itself
   }
 }
 
