@@ -130,6 +130,23 @@ void fewBases(benchmark::State& state, const Frame& (*get)()) {
   });
 }
 
+/// The whole per-object pipeline as the CLI, the side by side and the node run it (estimateObject:
+/// soft segment, instance regions where the frame has a boundary map, free-space check, StoCS) at
+/// the few bases of the side by side's equal-accuracy points, on all cores; seed i % 10 on
+/// iteration i.
+void pipeline(benchmark::State& state, const Frame& (*get)()) {
+  const Frame& f = get();
+  PipelineParams p = benchmarkParams();
+  p.stocs.threads = 0;
+  p.stocs.bases = static_cast<int>(state.range(0));
+  const cv::Mat* boundary = f.boundary.empty() ? nullptr : &f.boundary;
+  uint64_t i = 0;
+  for (auto _ : state) {
+    p.stocs.seed = i++ % kFullEstimateSeeds;
+    benchmark::DoNotOptimize(estimateObject(f.cloud, f.focal, f.probability, f.model, p, boundary));
+  }
+}
+
 BENCHMARK_CAPTURE(baseSampling, cat, cat)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(baseSampling, dove, dove)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(congruentSets, cat, cat)->Unit(benchmark::kMicrosecond);
@@ -167,6 +184,10 @@ const bool kPerFrameRegistered = [] {
                    ->ArgsProduct({{5, 10, 20}, {0, 100}})
                    ->ArgNames({"bases", "draw_budget"})
                    ->Iterations(kFullEstimateSeeds));
+    onAllCores(benchmark::RegisterBenchmark(("pipeline/" + frame).c_str(), pipeline, get)
+                   ->ArgName("bases")
+                   ->DenseRange(2, 5)
+                   ->Iterations(10 * kFullEstimateSeeds));
   }
   return true;
 }();

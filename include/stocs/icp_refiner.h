@@ -6,7 +6,7 @@
 #include <Eigen/Geometry>
 
 #include "stocs/lcp_scorer.h"
-#include "stocs/neighbourhood_grid.h"
+#include "stocs/region_grids.h"
 
 namespace stocs {
 
@@ -22,7 +22,7 @@ struct IcpParams {
   void validate() const;
 };
 
-/// Refines poses against one segment; the correspondence grid is built once for all of them.
+/// Refines poses against one segment; the correspondence grids are built once for all of them.
 class IcpRefiner {
  public:
   /// Throws InputError when `params` are out of range.
@@ -39,7 +39,7 @@ class IcpRefiner {
  private:
   const SoftSegment& segment_;
   IcpParams params_;
-  NeighbourhoodGrid grid_;
+  RegionGrids grids_;  // at the correspondence radius
   float cos_normal_;
 };
 

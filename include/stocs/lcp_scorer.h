@@ -8,11 +8,9 @@
 
 #include <Eigen/Geometry>
 #include <limits>
-#include <mutex>
-#include <unordered_map>
 
-#include "stocs/neighbourhood_grid.h"
 #include "stocs/object_model.h"
+#include "stocs/region_grids.h"
 #include "stocs/soft_segment.h"
 
 namespace stocs {
@@ -81,7 +79,7 @@ class LcpScorer {
   LcpDetail detail(const ObjectModel& model, const Eigen::Isometry3f& pose, int region = -1) const;
 
   /// Index of the segment point of `region` (-1: any) closest to p within delta_s, or -1.
-  int closest(const Eigen::Vector3f& p, int region) const { return gridOf(region).closest(p); }
+  int closest(const Eigen::Vector3f& p, int region) const { return grids_.of(region).closest(p); }
 
   const SoftSegment& segment() const { return segment_; }
   const LcpParams& params() const { return params_; }
@@ -89,7 +87,6 @@ class LcpScorer {
  private:
   const SoftSegment& segment_;
   LcpParams params_;
-  const NeighbourhoodGrid& gridOf(int region) const;
   static constexpr uint32_t kChunk = 16;  // model points per step of the facing test and checks
   /// Model points seen at the first coarse check (whole chunks).
   uint32_t headSize(size_t model_points) const;
@@ -97,12 +94,7 @@ class LcpScorer {
   bool advance(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                PartialScore& partial, uint32_t end, float must_reach) const;
 
-  // All points. With regions every base is drawn inside one, so only a caller that scores against
-  // the whole segment needs it: then it is built on first use (half the grid work of a segment).
-  mutable NeighbourhoodGrid grid_;
-  mutable std::once_flag grid_once_;
-  std::unordered_map<int, NeighbourhoodGrid> region_grids_;  // the points of each region
-  NeighbourhoodGrid empty_;
+  RegionGrids grids_;  // at delta_s
   float cos_normal_;
   float sin_normal_;  // bound of n.v for a model point that can still match (see score())
   float max_probability_ = 0;

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "stocs/error.h"
-#include "stocs/neighbourhood_grid.h"
 
 namespace stocs {
 namespace {
@@ -39,7 +38,7 @@ void IcpParams::validate() const {
 IcpRefiner::IcpRefiner(const SoftSegment& segment, const IcpParams& params)
     : segment_(segment),
       params_((params.validate(), params)),
-      grid_(segment.points, params.max_distance),
+      grids_(segment.points, segment.region, params.max_distance),
       cos_normal_(std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {}
 
 Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment& segment,
@@ -51,15 +50,15 @@ Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment
 Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                      int region, const LcpScorer* near) const {
   const SoftSegment& segment = segment_;
-  auto inRegion = [&](int i) { return region < 0 || segment.region[i] == region; };
   if (near && (&near->segment() != &segment || near->params().distance > params_.max_distance)) {
     near = nullptr;
   }
   // Most correspondences of a pose close to its optimum lie within delta_s: those take the short
   // lists of the scorer's grid, and only the others the long lists of the correspondence radius.
+  const NeighbourhoodGrid& grid = grids_.of(region);
   auto closest = [&](const Eigen::Vector3f& p) {
     const int s = near ? near->closest(p, region) : -1;
-    return s >= 0 ? s : grid_.closest(p, inRegion);
+    return s >= 0 ? s : grid.closest(p);
   };
   Eigen::Vector3f model_centre = Eigen::Vector3f::Zero();
   for (const Eigen::Vector3f& q : model.points) model_centre += q;

@@ -29,33 +29,12 @@ void LcpParams::validate() const {
 LcpScorer::LcpScorer(const SoftSegment& segment, const LcpParams& params)
     : segment_(segment),
       params_((params.validate(), params)),  // before the grid uses delta_s
-      grid_(segment.region.empty() ? NeighbourhoodGrid(segment.points, params.distance)
-                                   : NeighbourhoodGrid()),
+      grids_(segment.points, segment.region, params.distance),
       cos_normal_(std::cos(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)),
       sin_normal_(params.normal_angle_deg >= 90.0f
                       ? 1.0f
                       : std::sin(params.normal_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
   for (float p : segment.probability) max_probability_ = std::max(max_probability_, p);
-  // One grid per instance region, so that region-restricted searches need no per-point test.
-  std::unordered_map<int, std::vector<uint32_t>> members;
-  for (size_t i = 0; i < segment.region.size(); ++i) {
-    if (segment.region[i] >= 0) members[segment.region[i]].push_back(static_cast<uint32_t>(i));
-  }
-  for (const auto& [region, subset] : members) {
-    region_grids_.emplace(region, NeighbourhoodGrid(segment.points, subset, params.distance));
-  }
-  empty_ = NeighbourhoodGrid(segment.points, std::vector<uint32_t>{}, params.distance);
-}
-
-const NeighbourhoodGrid& LcpScorer::gridOf(int region) const {
-  if (segment_.region.empty()) return grid_;
-  if (region < 0) {
-    std::call_once(grid_once_,
-                   [&] { grid_ = NeighbourhoodGrid(segment_.points, params_.distance); });
-    return grid_;
-  }
-  const auto it = region_grids_.find(region);
-  return it == region_grids_.end() ? empty_ : it->second;
 }
 
 uint32_t LcpScorer::headSize(size_t model_points) const {
@@ -77,7 +56,7 @@ bool LcpScorer::advance(const ObjectModel& model, const Eigen::Isometry3f& pose,
   // runs lazily, a chunk at a time, because most hypotheses stop after a few chunks.
   const Eigen::Vector3f camera_offset = r.transpose() * t;
   const float sin2 = sin_normal_ * sin_normal_;
-  const NeighbourhoodGrid& grid = gridOf(region);
+  const NeighbourhoodGrid& grid = grids_.of(region);
   const auto n = static_cast<uint32_t>(model.size());
   // Coarse-to-fine: checks after every coarse_fraction of the model points (1/8, 2/8, ... by
   // default). The points seen are a sample drawn without replacement from the model's, so the

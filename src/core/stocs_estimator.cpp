@@ -188,15 +188,16 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
   return instances;
 }
 
-/// The scorer and the ICP refiner of a segment. Each builds a neighbourhood grid over the segment
-/// (milliseconds on large segments, before any base can be verified), and they are independent, so
-/// they are built side by side.
+/// The scorer and the ICP refiner of a segment. Without instance regions each builds a
+/// neighbourhood grid over the whole segment (milliseconds on large segments, before any base can
+/// be verified), and they are independent, so they are built side by side; with regions the grids
+/// are built on first use (RegionGrids).
 struct SegmentIndexes {
   std::optional<LcpScorer> scorer;
   std::optional<IcpRefiner> icp;  // empty when ICP is off
 };
 
-/// Fills `out` in place: the scorer holds a once_flag and cannot move.
+/// Fills `out` in place: the scorer and the refiner hold once_flags and cannot move.
 void buildIndexes(const SoftSegment& segment, const StocsParams& params, int threads,
                   SegmentIndexes& out) {
   std::exception_ptr error;  // an exception must not leave an OpenMP region

@@ -74,5 +74,31 @@ TEST_F(IcpRefinerTest, StepsTurnTheModelAboutItsCentre) {
   EXPECT_LT(addOf(IcpRefiner(segment, params).refine(model_, far_start, -1), truth), 1e-4);
 }
 
+// With instance regions a refinement only takes correspondences in the pose's region, even where
+// another region's points are closer.
+TEST_F(IcpRefinerTest, CorrespondencesStayInTheRegion) {
+  const Eigen::Isometry3f truth = test::viewingPose(1.0f);
+  Eigen::Isometry3f behind = truth;
+  behind.pretranslate(Eigen::Vector3f(0, 0, 0.008f));  // a second instance 8 mm further away
+  SoftSegment segment = visibleSamples(model_, truth);
+  const SoftSegment second = visibleSamples(model_, behind);
+  segment.region.assign(segment.size(), 1);
+  for (size_t i = 0; i < second.size(); ++i) {
+    segment.points.push_back(second.points[i]);
+    segment.normals.push_back(second.normals[i]);
+    segment.confidence.push_back(1.0f);
+    segment.pixel.push_back(second.pixel[i]);
+    segment.region.push_back(2);
+  }
+  segment.probability.assign(segment.size(), 1.0f / static_cast<float>(segment.size()));
+  Eigen::Isometry3f start = truth;
+  start.pretranslate(Eigen::Vector3f(0, 0, 0.003f));  // nearer the first instance
+  const IcpRefiner icp(segment, IcpParams{});
+  EXPECT_LT(addOf(icp.refine(model_, start, 1), truth), 1e-4);
+  EXPECT_LT(addOf(icp.refine(model_, start, 2), behind), 1e-4);
+  EXPECT_LT(addOf(icp.refine(model_, start, -1), truth), 1e-4);  // all points: the nearer one
+  EXPECT_TRUE(icp.refine(model_, start, 3).isApprox(start));     // a region without points
+}
+
 }  // namespace
 }  // namespace stocs
