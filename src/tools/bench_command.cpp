@@ -47,6 +47,7 @@ struct BenchOptions {
   double run_timeout = 0;
   bool no_plots = false;
   bool cold = false;
+  int repeats = 1;
   PipelineParams params;
   ModelOptions model;
   /// The estimation options of the command line, passed on to every `stocs estimate`.
@@ -148,6 +149,7 @@ std::vector<std::string> childCommand(const BenchOptions& o, const BenchInput& i
                                    "--per-object",
                                    r.per_object.string()};
   if (!o.cold) argv.push_back("--warm-up");
+  if (o.repeats > 1) argv.insert(argv.end(), {"--repeats", std::to_string(o.repeats)});
   if (!o.scenes.empty()) argv.insert(argv.end(), {"--scenes", joined(o.scenes)});
   if (!o.objects.empty()) argv.insert(argv.end(), {"--objects", joined(o.objects)});
   for (const CLI::Option* opt : o.forwarded) {
@@ -252,6 +254,7 @@ int runBench(BenchOptions o) {
   BenchData d;
   d.command = o.command;
   d.warm = !o.cold;
+  d.repeats = o.repeats;
   d.methods = o.methods;
   d.swept_methods = o.sweep_methods.empty() ? o.methods : o.sweep_methods;
   if (!o.no_threshold_sweep) d.thresholds = o.thresholds;
@@ -324,6 +327,10 @@ Command registerBench(CLI::App& app) {
   cmd->add_flag("--cold", o->cold,
                 "Time every run's first object cold: without `stocs estimate --warm-up`, its time "
                 "includes the process's first-call costs (thread pools, first-touch memory)");
+  cmd->add_option("--repeats", o->repeats,
+                  "Process every image this many times in a row (`stocs estimate --repeats`): "
+                  "times are medians over the repeats")
+      ->check(CLI::Range(1, 1000));
   const size_t before = cmd->get_options().size();
   addModelOptions(*cmd, o->model);
   addPipelineOptions(*cmd, o->params);

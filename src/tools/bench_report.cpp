@@ -342,6 +342,10 @@ void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool
                              "process's first calls (thread pools, first-touch memory)"
                            : "; cold (`--cold`): the first target of every run includes the "
                              "process's first-call costs") +
+        (d.repeats > 1 ? fmt::format("; every image was processed {} times in a row and a "
+                                     "target's time is the median over them (`--repeats`)",
+                                     d.repeats)
+                       : std::string()) +
         ". CPU: the CPU time of the process, all its threads, during the same call; on a shared "
         "machine it is not inflated by other processes as wall time is. Peak memory: the maximum "
         "resident set size of the `stocs estimate` process that ran the "

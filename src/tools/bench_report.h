@@ -55,6 +55,7 @@ struct BenchData {
   std::vector<std::string> notes;  ///< e.g. inputs skipped for want of targets
   std::string command;             ///< the command line, for the report
   bool warm = true;                ///< every run began with an untimed estimate (--warm-up)
+  int repeats = 1;                 ///< every image processed this many times (--repeats)
 };
 
 /// Writes into `out`: results.md, summary.csv, targets.csv, threshold_sweep.csv, budget_sweep.csv,

@@ -1,6 +1,9 @@
 // The `stocs` tool end to end: results on a generated dataset, --help, and error exits.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <string>
+
 #include "stocs/bop_results.h"
 #include "test_support.h"
 
@@ -41,6 +44,25 @@ TEST(Cli, EstimateWritesBopResultsCloseToTheTruth) {
   ASSERT_EQ(warm.size(), 1u);
   EXPECT_EQ(warm[0].R, results[0].R);
   EXPECT_EQ(warm[0].t_mm, results[0].t_mm);
+
+  // Repeats only change the times: the same pose, and one per-object row per target.
+  ASSERT_EQ(test::runCommand(kTool + " estimate --warm-up --repeats 3 --dataset " +
+                                 (root / "data").string() + " --out " + (root / "x.csv").string() +
+                                 " --per-object " + (root / "x_objects.csv").string() +
+                                 " --cache-dir " + (root / "cache").string(),
+                             out),
+            0)
+      << out;
+  const std::vector<BopResult> repeated = readBopResults(root / "x.csv");
+  ASSERT_EQ(repeated.size(), 1u);
+  EXPECT_EQ(repeated[0].R, results[0].R);
+  EXPECT_EQ(repeated[0].t_mm, results[0].t_mm);
+  EXPECT_GT(repeated[0].time, 0.0);
+  std::ifstream rows(root / "x_objects.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(rows, line)) ++lines;
+  EXPECT_EQ(lines, 2);  // header and the one target
 }
 
 TEST(Cli, EveryRegisteredMethodRunsAndUnknownOnesAreRefused) {
@@ -92,6 +114,11 @@ TEST(Cli, BadInputsExitNonZeroWithAMessage) {
                              out),
             2);
   EXPECT_NE(out.find("no (image, object) pair"), std::string::npos) << out;
+  EXPECT_NE(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
+                                 " --out x.csv --repeats 0",
+                             out),
+            0);
+  EXPECT_NE(out.find("--repeats"), std::string::npos) << out;
   EXPECT_NE(test::runCommand(kTool + " estimate --dataset " + (root / "data").string(), out),
             0);  // --out missing
   EXPECT_NE(test::runCommand(kTool + " frobnicate", out), 0);
