@@ -15,11 +15,25 @@ struct IcpParams {
   /// The poses of this many best bases are refined and the best objective after refinement wins.
   int candidates = 10;
   int iterations = 20;
+  /// Screening of the candidates: each first takes this many steps, and only the `finalists` best
+  /// of them by objective take the rest. 0 (or iterations or more) refines every candidate fully.
+  int screening_iterations = 8;
+  int finalists = 2;
   float max_distance = 0.01f;      ///< correspondence radius, metres
   float normal_angle_deg = 45.0f;  ///< correspondences need normals within this angle
 
   /// Throws InputError naming the first value out of range.
   void validate() const;
+};
+
+/// A refinement in progress: run it on with IcpRefiner::iterate.
+struct IcpRun {
+  Eigen::Isometry3f pose;         ///< the current pose
+  Eigen::Isometry3f before_last;  ///< the pose two steps back, for the cycle test
+  int iterations = 0;             ///< steps taken
+  bool finished = false;          ///< converged, cycling, or too few correspondences
+
+  explicit IcpRun(const Eigen::Isometry3f& start) : pose(start), before_last(start) {}
 };
 
 /// Refines poses against one segment; the correspondence grids are built once for all of them.
@@ -35,6 +49,14 @@ class IcpRefiner {
   /// ignored when its delta_s exceeds that radius.
   Eigen::Isometry3f refine(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
                            const LcpScorer* near = nullptr) const;
+
+  /// Runs `run` on to `until` steps in all (at most the iterations of IcpParams) unless it
+  /// finishes first; refine() is one call of it to the end. Running on in several calls takes the
+  /// same steps as one call.
+  void iterate(const ObjectModel& model, IcpRun& run, int until, int region,
+               const LcpScorer* near = nullptr) const;
+
+  const IcpParams& params() const { return params_; }
 
  private:
   const SoftSegment& segment_;

@@ -26,6 +26,13 @@ void IcpParams::validate() const {
   if (iterations < 0 || iterations > 1000) {
     throw InputError(fmt::format("ICP iterations {} is outside [0, 1000]", iterations));
   }
+  if (screening_iterations < 0 || screening_iterations > 1000) {
+    throw InputError(
+        fmt::format("ICP screening iterations {} is outside [0, 1000]", screening_iterations));
+  }
+  if (finalists < 1 || finalists > 1000) {
+    throw InputError(fmt::format("ICP finalists {} is outside [1, 1000]", finalists));
+  }
   if (!(max_distance > 0.0f && max_distance <= 0.2f)) {
     throw InputError(
         fmt::format("ICP correspondence distance {} m is outside (0, 0.2]", max_distance));
@@ -49,6 +56,13 @@ Eigen::Isometry3f refinePointToPlane(const ObjectModel& model, const SoftSegment
 
 Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                      int region, const LcpScorer* near) const {
+  IcpRun run(pose);
+  iterate(model, run, params_.iterations, region, near);
+  return run.pose;
+}
+
+void IcpRefiner::iterate(const ObjectModel& model, IcpRun& run, int until, int region,
+                         const LcpScorer* near) const {
   const SoftSegment& segment = segment_;
   if (near && (&near->segment() != &segment || near->params().distance > params_.max_distance)) {
     near = nullptr;
@@ -63,8 +77,9 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
   Eigen::Vector3f model_centre = Eigen::Vector3f::Zero();
   for (const Eigen::Vector3f& q : model.points) model_centre += q;
   model_centre /= static_cast<float>(std::max<size_t>(1, model.size()));
-  Eigen::Isometry3f current = pose, before_last = pose;
-  for (int it = 0; it < params_.iterations; ++it) {
+  Eigen::Isometry3f& current = run.pose;
+  for (until = std::min(until, params_.iterations); !run.finished && run.iterations < until;
+       ++run.iterations) {
     // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w about
     // the model's centre c and a translation v has Jacobian [(p - c) x n, n]. About the camera
     // origin instead, a metre away, a rotation of w radians misplaces the model by |w|^2 / 2 metres
@@ -89,9 +104,15 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
       jtr += w * j * r;
       ++used;
     }
-    if (used < 6) break;
+    if (used < 6) {
+      run.finished = true;
+      break;
+    }
     const Eigen::Matrix<double, 6, 1> x = jtj.ldlt().solve(-jtr);
-    if (!x.allFinite()) break;
+    if (!x.allFinite()) {
+      run.finished = true;
+      break;
+    }
     const Eigen::Vector3d w = x.head<3>();
     Eigen::Isometry3f step = Eigen::Isometry3f::Identity();
     if (w.norm() > 0)
@@ -101,13 +122,13 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
     // Converged: the step moves the model by well under the sensor's resolution. Or cycling: the
     // correspondences flip between two sets and the step returns to the pose of two steps back.
     const bool cycling =
-        it >= 1 && (next.matrix() - before_last.matrix()).cwiseAbs().maxCoeff() < kCycleTolerance;
-    before_last = current;
+        run.iterations >= 1 &&
+        (next.matrix() - run.before_last.matrix()).cwiseAbs().maxCoeff() < kCycleTolerance;
+    run.before_last = current;
     current = next;
-    if ((w.norm() < kConvergedRotation && x.tail<3>().norm() < kConvergedTranslation) || cycling)
-      break;
+    run.finished =
+        (w.norm() < kConvergedRotation && x.tail<3>().norm() < kConvergedTranslation) || cycling;
   }
-  return current;
 }
 
 }  // namespace stocs

@@ -123,24 +123,71 @@ bool higherScore(const Hypothesis& a, const Hypothesis& b) {
   return a.score > b.score;
 }
 
-/// Point-to-plane refinement of `h`, kept when it does not lower the objective by more than 10%
-/// (a diverged refinement keeps the unrefined pose); then, with a free-space check, the score is
-/// discounted by the share of the pose's visible surface in free space.
-Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
+/// `h` after point-to-plane refinement to `refined`: the refined pose is kept when it does not
+/// lower the objective by more than 10% (a diverged refinement keeps the unrefined pose); then,
+/// with a free-space check, the score is discounted by the share of the pose's visible surface in
+/// free space.
+Hypothesis judged(const Hypothesis& h, const Eigen::Isometry3f* refined, const ObjectModel& model,
                   const LcpScorer& scorer, const FreeSpaceCheck* free_space) {
   Hypothesis out = h;
   out.polished = true;
-  if (icp) {
-    const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region, &scorer);
-    const float score = scorer.score(model, pose, h.region);
+  if (refined) {
+    const float score = scorer.score(model, *refined, h.region);
     if (score >= 0.9f * h.score) {
-      out.pose = pose;
+      out.pose = *refined;
       out.score = score;
-      out.refined = !pose.isApprox(h.pose);
+      out.refined = !refined->isApprox(h.pose);
     }
   }
   if (free_space) out.score *= 1.0f - free_space->violation(model, out.pose);
   return out;
+}
+
+/// `h` refined to the end (or only judged without ICP).
+Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
+                  const LcpScorer& scorer, const FreeSpaceCheck* free_space) {
+  if (!icp) return judged(h, nullptr, model, scorer, free_space);
+  const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region, &scorer);
+  return judged(h, &pose, model, scorer, free_space);
+}
+
+/// The `first` best of `ranked` refined, in parallel: each refinement is independent and reads only
+/// shared const state. With screening (IcpParams::screening_iterations), every candidate first
+/// takes that many steps, and only the IcpParams::finalists best of them by the judged objective
+/// take the others: a candidate's first steps settle whether it is in the running, and most of
+/// the ICP time went into the later steps of candidates that then lost.
+std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, size_t first,
+                                         const ObjectModel& model, const IcpRefiner* icp,
+                                         const LcpScorer& scorer, const FreeSpaceCheck* free_space,
+                                         int threads) {
+  std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
+  const int screening = icp ? icp->params().screening_iterations : 0;
+  const auto finalists = icp ? static_cast<size_t>(icp->params().finalists) : first;
+  if (screening <= 0 || screening >= icp->params().iterations || first <= finalists) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (size_t k = 0; k < first; ++k) pool[k] = refine(ranked[k], model, icp, scorer, free_space);
+    return pool;
+  }
+  std::vector<IcpRun> runs;
+  runs.reserve(first);
+  for (size_t k = 0; k < first; ++k) runs.emplace_back(ranked[k].pose);
+  auto step = [&](size_t k, int until) {
+    icp->iterate(model, runs[k], until, ranked[k].region, &scorer);
+    pool[k] = judged(ranked[k], &runs[k].pose, model, scorer, free_space);
+  };
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t k = 0; k < first; ++k) step(k, screening);
+  // The finalists: best judged objective first, ties to the better unrefined rank.
+  std::vector<size_t> order(first);
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return pool[a].score > pool[b].score; });
+  order.resize(finalists);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t f = 0; f < order.size(); ++f) {
+    if (!runs[order[f]].finished) step(order[f], icp->params().iterations);
+  }
+  return pool;
 }
 
 /// Up to `count` distinct poses from the bases' best hypotheses (`ranked`, best first). The
@@ -154,13 +201,8 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           const IcpRefiner* icp, const StocsParams& params,
                                           const FreeSpaceCheck* free_space, int threads) {
   const size_t first = std::min(refined_bases, ranked.size());
-  // The candidates are refined in parallel: each refinement is independent and reads only shared
-  // const state.
-  std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t k = 0; k < first; ++k) {
-    pool[k] = refine(ranked[k], model, icp, scorer, free_space);
-  }
+  std::vector<Hypothesis> pool =
+      refineCandidates(ranked, first, model, icp, scorer, free_space, threads);
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
 

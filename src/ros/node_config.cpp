@@ -304,6 +304,8 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   icp.get("max_distance", p.stocs.icp.max_distance);
   icp.get("normal_angle_deg", p.stocs.icp.normal_angle_deg);
   icp.get("candidates", p.stocs.icp.candidates);
+  icp.get("screening_iterations", p.stocs.icp.screening_iterations);
+  icp.get("finalists", p.stocs.icp.finalists);
   icp.rejectUnknownKeys();
   MapReader free_space = stocs.map("free_space");
   free_space.get("enabled", p.stocs.free_space.enabled);

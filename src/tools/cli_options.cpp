@@ -94,6 +94,13 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
                  "Poses of this many best bases are refined; the best after refinement wins")
       ->group(stocs);
   cmd.add_option("--icp-iterations", p.stocs.icp.iterations, "ICP iterations")->group(stocs);
+  cmd.add_option("--icp-screening", p.stocs.icp.screening_iterations,
+                 "ICP steps every candidate takes before only the --icp-finalists best by "
+                 "objective take the rest (0: every candidate takes every step)")
+      ->group(stocs);
+  cmd.add_option("--icp-finalists", p.stocs.icp.finalists,
+                 "Candidates refined to the end after the screening steps")
+      ->group(stocs);
   cmd.add_option("--icp-distance", p.stocs.icp.max_distance, "ICP correspondence radius, m")
       ->group(stocs);
   cmd.add_option("--free-space", p.stocs.free_space.enabled,

@@ -74,6 +74,23 @@ TEST_F(IcpRefinerTest, StepsTurnTheModelAboutItsCentre) {
   EXPECT_LT(addOf(IcpRefiner(segment, params).refine(model_, far_start, -1), truth), 1e-4);
 }
 
+TEST_F(IcpRefinerTest, RunningOnInStepsTakesTheSameStepsAsOneRun) {
+  const Eigen::Isometry3f truth = test::viewingPose(1.0f);
+  const SoftSegment segment = visibleSamples(model_, truth);
+  const IcpRefiner icp(segment, IcpParams{});
+  const Eigen::Isometry3f start = turned(truth, 0.15f);
+  IcpRun run(start);
+  icp.iterate(model_, run, 2, -1);
+  EXPECT_EQ(run.iterations, 2);
+  EXPECT_FALSE(run.finished);
+  icp.iterate(model_, run, 5, -1);
+  icp.iterate(model_, run, 1000, -1);  // at most IcpParams::iterations in all
+  EXPECT_LE(run.iterations, IcpParams{}.iterations);
+  EXPECT_TRUE(run.finished || run.iterations == IcpParams{}.iterations);
+  EXPECT_EQ(run.pose.matrix(), icp.refine(model_, start, -1).matrix());
+  EXPECT_LT(addOf(run.pose, truth), 1e-4);
+}
+
 // With instance regions a refinement only takes correspondences in the pose's region, even where
 // another region's points are closer.
 TEST_F(IcpRefinerTest, CorrespondencesStayInTheRegion) {

@@ -160,6 +160,26 @@ TEST_F(StocsEstimatorTest, IcpThroughTheScorersGridRefinesExactlyAsWithoutIt) {
   EXPECT_EQ(icp.refine(model_.model, start, -1, &too_wide).matrix(), alone.matrix());
 }
 
+// Screening refines every candidate a few steps and only the finalists to the end: with no more
+// candidates than finalists it changes nothing, and with more it still finds the pose.
+TEST_F(StocsEstimatorTest, IcpScreeningKeepsTheFinalists) {
+  PipelineParams params;
+  params.stocs.seed = 3;
+  params.stocs.consensus_bases = 0;  // every base: all 10 candidates
+  const SoftSegment seg = segment(params);
+  params.stocs.icp.screening_iterations = 0;
+  const PoseEstimate full = StocsEstimator(model_, params.stocs).estimate(seg);
+  params.stocs.icp.screening_iterations = 8;
+  params.stocs.icp.finalists = params.stocs.icp.candidates;
+  const PoseEstimate all_finalists = StocsEstimator(model_, params.stocs).estimate(seg);
+  params.stocs.icp.finalists = 2;
+  const PoseEstimate screened = StocsEstimator(model_, params.stocs).estimate(seg);
+  ASSERT_TRUE(full.found && all_finalists.found && screened.found);
+  EXPECT_EQ(all_finalists.pose.matrix(), full.pose.matrix());
+  EXPECT_LT(addsOf(screened), 0.05 * model_.model.diameter);
+  EXPECT_TRUE(screened.refined);
+}
+
 TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
   PipelineParams params;
   params.stocs.bases = 100000;
@@ -296,6 +316,12 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.icp.candidates = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.icp.screening_iterations = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p = StocsParams{};
+  p.icp.finalists = 0;
   EXPECT_THROW(p.validate(), InputError);
   p = StocsParams{};
   p.lcp.coarse_fraction = 1;

@@ -89,6 +89,8 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
   EXPECT_EQ(p.stocs.lcp.coarse_ratio, d.stocs.lcp.coarse_ratio);
   EXPECT_EQ(p.stocs.icp.candidates, d.stocs.icp.candidates);
+  EXPECT_EQ(p.stocs.icp.screening_iterations, d.stocs.icp.screening_iterations);
+  EXPECT_EQ(p.stocs.icp.finalists, d.stocs.icp.finalists);
   EXPECT_EQ(p.stocs.free_space.enabled, d.stocs.free_space.enabled);
   EXPECT_EQ(p.stocs.free_space.margin, d.stocs.free_space.margin);
   EXPECT_EQ(p.stocs.icp.enabled, d.stocs.icp.enabled);
@@ -129,7 +131,7 @@ estimation:
   segment: {min_probability: 0.3, samples_per_voxel: 0, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
   stocs: {bases: 40, base_draw_budget: 120, consensus_bases: 6, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
-          finished_per_base: 7, icp: {enabled: false, candidates: 3}, free_space: {enabled: false, margin: 0.02},
+          finished_per_base: 7, icp: {enabled: false, candidates: 3, screening_iterations: 4, finalists: 3}, free_space: {enabled: false, margin: 0.02},
           lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
   const NodeConfig c = loadNodeConfig(file);
@@ -174,6 +176,8 @@ estimation:
   EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_fraction, 0.5f);
   EXPECT_FLOAT_EQ(c.estimation.stocs.lcp.coarse_ratio, 0.3f);
   EXPECT_EQ(c.estimation.stocs.icp.candidates, 3);
+  EXPECT_EQ(c.estimation.stocs.icp.screening_iterations, 4);
+  EXPECT_EQ(c.estimation.stocs.icp.finalists, 3);
   EXPECT_FALSE(c.estimation.stocs.free_space.enabled);
   EXPECT_FLOAT_EQ(c.estimation.stocs.free_space.margin, 0.02f);
   EXPECT_EQ(c.estimation.stocs.instances, 4);
