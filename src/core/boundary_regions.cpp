@@ -7,6 +7,9 @@
 
 #include "stocs/error.h"
 
+// The 8-pixel steps read pixels as the bytes of a little-endian word.
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "BoundaryRegions assumes little-endian");
+
 namespace stocs {
 namespace {
 
@@ -28,7 +31,7 @@ BoundaryRegions::BoundaryRegions(const cv::Mat& boundary_map)
         "boundary map must be a non-empty single-channel 8-bit image (255 interior, 0 boundary)");
   }
   // Interior is the top bit: 8 pixels whose top bits all equal the current state are skipped at
-  // once.
+  // once, and otherwise the scan jumps to the first that differs.
   constexpr uint64_t kTopBits = 0x8080808080808080ull;
   row_starts_.reserve(static_cast<size_t>(height_) + 1);
   row_starts_.push_back(0);
@@ -41,10 +44,12 @@ BoundaryRegions::BoundaryRegions(const cv::Mat& boundary_map)
       if (u + 8 <= width_) {
         uint64_t eight;
         std::memcpy(&eight, row + u, sizeof eight);
-        if ((eight & kTopBits) == (inside ? kTopBits : 0)) {
+        const uint64_t changed = (eight & kTopBits) ^ (inside ? kTopBits : 0);
+        if (changed == 0) {
           u += 8;
           continue;
         }
+        u += __builtin_ctzll(changed) / 8;  // the first pixel that changes (little-endian load)
       }
       const bool interior = row[u] >= 128;
       if (interior && !inside) begin = u;

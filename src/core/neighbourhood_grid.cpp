@@ -53,7 +53,10 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
   const float reach2 = reach * reach;
   // Cell coordinate of a grid coordinate, 0 below the grid: truncation is the floor there, and
   // not a libm call (see fast_floor.h; this runs for every row of cells near every point).
-  auto cellOf = [](float c) { return c > 0 ? static_cast<size_t>(c) : size_t{0}; };
+  // Through uint32_t: float to and from 64-bit unsigned integers costs a compare and a branch on
+  // x86-64, and cell coordinates stay far below 2^32 (at most kCellsPerPoint cells per point).
+  auto cellOf = [](float c) { return c > 0 ? size_t{static_cast<uint32_t>(c)} : size_t{0}; };
+  auto coordinate = [](size_t c) { return static_cast<float>(static_cast<uint32_t>(c)); };
   // The cells that may come within reach of point j: [lo_cell, hi_cell] per axis.
   auto cellRange = [&](uint32_t j, size_t(&lo_cell)[3], size_t(&hi_cell)[3]) {
     const Eigen::Vector3f& p = points_[j];
@@ -100,10 +103,10 @@ NeighbourhoodGrid::NeighbourhoodGrid(const std::vector<Eigen::Vector3f>& points,
     size_t lo_cell[3], hi_cell[3];
     cellRange(j, lo_cell, hi_cell);
     for (size_t z = lo_cell[2]; z <= hi_cell[2]; ++z) {
-      const float box_z = blocks_.origin.z() + static_cast<float>(z) * cell_size_;
+      const float box_z = blocks_.origin.z() + coordinate(z) * cell_size_;
       const float dz = std::max({box_z - p.z(), p.z() - (box_z + cell_size_), 0.0f});
       for (size_t y = lo_cell[1]; y <= hi_cell[1]; ++y) {
-        const float box_y = blocks_.origin.y() + static_cast<float>(y) * cell_size_;
+        const float box_y = blocks_.origin.y() + coordinate(y) * cell_size_;
         const float dy = std::max({box_y - p.y(), p.y() - (box_y + cell_size_), 0.0f});
         const float dzy2 = dz * dz + dy * dy;
         if (dzy2 >= reach2) continue;
