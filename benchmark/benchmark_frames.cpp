@@ -22,6 +22,7 @@ const Frame& frame(const std::filesystem::path& dataset, int scene, int image, i
   const BopFrameCamera cam = ds.sceneCameras(scene).at(image);
   const CameraIntrinsics k = cam.intrinsics(depth.cols, depth.rows);
   f.cloud = cloudFromDepth(depth, k, cam.depth_scale / 1000);
+  f.camera = k;
   f.focal = static_cast<float>(k.fx);
   f.probability = ds.loadProbability(scene, image, object);
   f.boundary = ds.loadBoundary(scene, image);

@@ -13,6 +13,7 @@ namespace stocs::bench {
 
 struct Frame {
   OrganizedCloud cloud;
+  CameraIntrinsics camera;
   float focal = 0;
   cv::Mat probability, boundary;
   std::string model_file;  ///< metres = file units / 1000

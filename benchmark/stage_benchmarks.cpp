@@ -130,8 +130,9 @@ void fewBases(benchmark::State& state, const Frame& (*get)()) {
   });
 }
 
-/// The whole per-object pipeline as the CLI, the side by side and the node run it (estimateObject:
-/// soft segment, instance regions where the frame has a boundary map, free-space check, StoCS) at
+/// The whole per-object pipeline as the CLI, the side by side and the node run it (estimateObject
+/// with the frame's intrinsics: soft segment, instance regions where the frame has a boundary map,
+/// free-space check, StoCS) at
 /// the few bases of the side by side's equal-accuracy points, on all cores; seed i % 10 on
 /// iteration i.
 void pipeline(benchmark::State& state, const Frame& (*get)()) {
@@ -143,7 +144,8 @@ void pipeline(benchmark::State& state, const Frame& (*get)()) {
   uint64_t i = 0;
   for (auto _ : state) {
     p.stocs.seed = i++ % kFullEstimateSeeds;
-    benchmark::DoNotOptimize(estimateObject(f.cloud, f.focal, f.probability, f.model, p, boundary));
+    benchmark::DoNotOptimize(
+        estimateObject(f.cloud, f.focal, f.probability, f.model, p, boundary, &f.camera));
   }
 }
 

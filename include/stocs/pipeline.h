@@ -2,6 +2,7 @@
 // One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
 // the benchmark and the ROS node so all of them run exactly the same estimation.
 
+#include "stocs/camera.h"
 #include "stocs/model_cache.h"
 #include "stocs/organized_cloud.h"
 #include "stocs/soft_segment.h"
@@ -30,10 +31,13 @@ struct ObjectEstimate {
 };
 
 /// Segments the cloud with `probability` (CV_32FC1, see toProbabilityImage), splits it into
-/// instance regions when a boundary map is given (see labelRegions), and runs StoCS. Throws
-/// InputError on size or type mismatches.
+/// instance regions when a boundary map is given (see labelRegions), and runs StoCS. `camera`, the
+/// cloud's intrinsics for the free-space check, is recovered from the cloud when null (a caller
+/// estimating several objects of a frame passes it once known). Throws InputError on size or type
+/// mismatches.
 ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
                               const cv::Mat& probability, const PreparedModel& model,
-                              const PipelineParams& params, const cv::Mat* boundary_map = nullptr);
+                              const PipelineParams& params, const cv::Mat* boundary_map = nullptr,
+                              const CameraIntrinsics* camera = nullptr);
 
 }  // namespace stocs

@@ -18,22 +18,26 @@ void PipelineParams::validate() const {
 
 ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
                               const cv::Mat& probability, const PreparedModel& model,
-                              const PipelineParams& params, const cv::Mat* boundary_map) {
+                              const PipelineParams& params, const cv::Mat* boundary_map,
+                              const CameraIntrinsics* camera) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   ObjectEstimate result;
   result.segment_points = segment.size();
-  std::optional<CameraIntrinsics> camera;
-  std::optional<FreeSpaceCheck> free_space;
-  if (params.stocs.free_space.enabled) {
+  std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
+  if (params.stocs.free_space.enabled && !camera) {
     try {
-      camera = intrinsicsFromCloud(cloud);
-      free_space.emplace(cloud, *camera, params.stocs.free_space);
+      recovered = intrinsicsFromCloud(cloud);
+      camera = &*recovered;
     } catch (const InputError&) {
       // Too few valid points to recover the camera: nothing is known about free space either.
     }
+  }
+  std::optional<FreeSpaceCheck> free_space;
+  if (params.stocs.free_space.enabled && camera) {
+    free_space.emplace(cloud, *camera, params.stocs.free_space);
   }
   result.estimate =
       StocsEstimator(model, params.stocs).estimate(segment, free_space ? &*free_space : nullptr);

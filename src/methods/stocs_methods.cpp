@@ -21,8 +21,8 @@ MethodResult fromObjectEstimate(const ObjectEstimate& e) {
 }  // namespace
 
 MethodResult StocsMethod::estimate(const MethodInput& in) {
-  return fromObjectEstimate(
-      estimateObject(*in.cloud, in.focal_px, *in.probability, *in.model, *in.params, in.boundary));
+  return fromObjectEstimate(estimateObject(*in.cloud, in.focal_px, *in.probability, *in.model,
+                                           *in.params, in.boundary, in.camera));
 }
 
 MethodResult HardSegmentStocsMethod::estimate(const MethodInput& in) {
@@ -31,7 +31,7 @@ MethodResult HardSegmentStocsMethod::estimate(const MethodInput& in) {
   params.segment = hardSegmentParams(params.segment);
   return fromObjectEstimate(estimateObject(*in.cloud, in.focal_px,
                                            hardProbability(*in.probability, threshold_), *in.model,
-                                           params, in.boundary));
+                                           params, in.boundary, in.camera));
 }
 
 }  // namespace stocs

@@ -57,16 +57,18 @@ const std_msgs::Header& FrameMessages::header() const {
 FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup) {
   const FrameMessages& frame = job.frame;
   const NodeConfig& config = setup.config;
+  // The intrinsics once per frame: every object's free-space check projects with them.
   stocs::OrganizedCloud cloud;
-  float focal_px = 0;
+  stocs::CameraIntrinsics camera;
   if (frame.cloud) {
     cloud = naming("cloud", [&] { return cloudFromMsg(*frame.cloud); });
-    focal_px = naming("cloud", [&] { return static_cast<float>(intrinsicsFromCloud(cloud).fx); });
+    camera = naming("cloud", [&] { return intrinsicsFromCloud(cloud); });
   } else {
     cloud =
         naming("depth image", [&] { return cloudFromDepthImage(frame.depth, *frame.camera_info); });
-    focal_px = static_cast<float>(frame.camera_info->K[0]);
+    camera = intrinsicsFromCameraInfo(*frame.camera_info);
   }
+  const auto focal_px = static_cast<float>(camera.fx);
   const std::vector<cv::Mat> probability = probabilities(job, config);
   const cv::Mat boundary =
       frame.boundary ? naming("boundary image", [&] { return boundaryFromImage(frame.boundary); })
@@ -82,7 +84,7 @@ FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup
     result.objects.push_back({i, naming(what, [&] {
                                 return stocs::estimateObject(
                                     cloud, focal_px, probability[i], setup.models[i], params,
-                                    boundary.empty() ? nullptr : &boundary);
+                                    boundary.empty() ? nullptr : &boundary, &camera);
                               })});
   }
   return result;

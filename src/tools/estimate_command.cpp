@@ -130,6 +130,7 @@ int runEstimate(const EstimateOptions& o) {
         MethodInput input;
         input.cloud = &cloud;
         input.focal_px = static_cast<float>(k.fx);
+        input.camera = &k;
         input.probability = &probability[obj];
         input.boundary = boundary.empty() ? nullptr : &boundary;
         input.model = &models[obj];

@@ -22,6 +22,8 @@ namespace stocs {
 struct MethodInput {
   const OrganizedCloud* cloud = nullptr;
   float focal_px = 0;
+  /// The cloud's intrinsics where known (null: methods that need them recover them from the cloud).
+  const CameraIntrinsics* camera = nullptr;
   const cv::Mat* probability = nullptr;  ///< CV_32FC1 in [0, 1]
   const cv::Mat* boundary = nullptr;     ///< optional CV_8UC1 instance boundary map
   const PreparedModel* model = nullptr;
