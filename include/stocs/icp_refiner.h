@@ -16,7 +16,8 @@ struct IcpParams {
   int candidates = 10;
   int iterations = 20;
   /// Screening of the candidates: each first takes this many steps, and only the `finalists` best
-  /// of them by objective take the rest. 0 (or iterations or more) refines every candidate fully.
+  /// of them by objective take the rest. 0 (or iterations or more) refines every candidate fully,
+  /// as do several instances per object (every candidate may be one).
   int screening_iterations = 8;
   int finalists = 2;
   float max_distance = 0.01f;      ///< correspondence radius, metres

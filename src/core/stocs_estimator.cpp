@@ -152,16 +152,17 @@ Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefine
 }
 
 /// The `first` best of `ranked` refined, in parallel: each refinement is independent and reads only
-/// shared const state. With screening (IcpParams::screening_iterations), every candidate first
+/// shared const state. With `screen` and IcpParams::screening_iterations, every candidate first
 /// takes that many steps, and only the IcpParams::finalists best of them by the judged objective
 /// take the others: a candidate's first steps settle whether it is in the running, and most of
-/// the ICP time went into the later steps of candidates that then lost.
+/// the ICP time went into the later steps of candidates that then lost. When several instances
+/// are wanted every candidate may be one, and all are refined to the end.
 std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, size_t first,
-                                         const ObjectModel& model, const IcpRefiner* icp,
-                                         const LcpScorer& scorer, const FreeSpaceCheck* free_space,
-                                         int threads) {
+                                         bool screen, const ObjectModel& model,
+                                         const IcpRefiner* icp, const LcpScorer& scorer,
+                                         const FreeSpaceCheck* free_space, int threads) {
   std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
-  const int screening = icp ? icp->params().screening_iterations : 0;
+  const int screening = icp && screen ? icp->params().screening_iterations : 0;
   const auto finalists = icp ? static_cast<size_t>(icp->params().finalists) : first;
   if (screening <= 0 || screening >= icp->params().iterations || first <= finalists) {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
@@ -202,7 +203,7 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           const FreeSpaceCheck* free_space, int threads) {
   const size_t first = std::min(refined_bases, ranked.size());
   std::vector<Hypothesis> pool =
-      refineCandidates(ranked, first, model, icp, scorer, free_space, threads);
+      refineCandidates(ranked, first, count == 1, model, icp, scorer, free_space, threads);
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
 

@@ -178,6 +178,18 @@ TEST_F(StocsEstimatorTest, IcpScreeningKeepsTheFinalists) {
   EXPECT_EQ(all_finalists.pose.matrix(), full.pose.matrix());
   EXPECT_LT(addsOf(screened), 0.05 * model_.model.diameter);
   EXPECT_TRUE(screened.refined);
+
+  // Several instances: every candidate may be one, and each is refined to the end (one screening
+  // step would leave the candidates that are not finalists a step from their start).
+  params.stocs.instances = 3;
+  params.stocs.icp.screening_iterations = 1;
+  const PoseEstimate several = StocsEstimator(model_, params.stocs).estimate(seg);
+  params.stocs.icp.screening_iterations = 0;
+  const PoseEstimate several_full = StocsEstimator(model_, params.stocs).estimate(seg);
+  ASSERT_EQ(several.instances.size(), several_full.instances.size());
+  for (size_t k = 0; k < several.instances.size(); ++k) {
+    EXPECT_EQ(several.instances[k].pose.matrix(), several_full.instances[k].pose.matrix()) << k;
+  }
 }
 
 TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
