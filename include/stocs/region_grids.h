@@ -3,7 +3,7 @@
 // region. Without regions the grid of all points is built at once; with regions every base, and so
 // every hypothesis and refinement, stays inside one region, and a frame's bases touch few of the
 // regions: each grid is built on its first query (the dove bin's 2 to 5 bases touch a few of
-// its 25 regions, and building every grid up front took a sixth of its time per object).
+// its 24 regions, and building every grid up front took a sixth of its time per object).
 
 #include <Eigen/Core>
 #include <cstdint>
