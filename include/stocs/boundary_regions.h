@@ -23,11 +23,9 @@ class BoundaryRegions {
   /// Throws InputError unless `boundary_map` is a non-empty CV_8UC1 image.
   explicit BoundaryRegions(const cv::Mat& boundary_map);
 
-  int width() const { return width_; }
-  int height() const { return height_; }
   /// Number of regions (the largest region number).
   int count() const { return count_; }
-  /// Region of pixel (u, v), 0 on a boundary. Expects 0 <= u < width(), 0 <= v < height().
+  /// Region of pixel (u, v), 0 on a boundary. Expects (u, v) inside the map.
   int at(int u, int v) const;
 
  private:

@@ -9,7 +9,7 @@ RegionGrids::RegionGrids(const std::vector<Eigen::Vector3f>& points, const std::
       has_regions_(!region.empty()),
       empty_(points, std::vector<uint32_t>{}, radius) {
   if (!has_regions_) {
-    std::call_once(all_.once, [&] { all_.grid = NeighbourhoodGrid(points, radius); });
+    of(-1);  // every query takes the grid of all points: built at once
     return;
   }
   for (size_t i = 0; i < region.size(); ++i) {

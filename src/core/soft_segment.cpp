@@ -229,15 +229,11 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
 }
 
 void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height) {
-  if (boundary_map.type() != CV_8UC1) {
-    throw InputError(
-        "boundary map must be a single-channel 8-bit image (255 interior, 0 boundary)");
-  }
   if (boundary_map.cols != width || boundary_map.rows != height) {
     throw InputError(fmt::format("boundary map is {}x{} but the image is {}x{}", boundary_map.cols,
                                  boundary_map.rows, width, height));
   }
-  const BoundaryRegions regions(boundary_map);
+  const BoundaryRegions regions(boundary_map);  // checks the type
   segment.region.resize(segment.size());
   for (size_t i = 0; i < segment.size(); ++i) {
     const int region = regions.at(segment.pixel[i] % width, segment.pixel[i] / width);
