@@ -266,6 +266,29 @@ TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget)
   EXPECT_EQ(full.hypotheses, paper.hypotheses);
 }
 
+// A caller that knows the frame's intrinsics passes them; intrinsics of another image size are an
+// input error, not a silently disabled free-space check.
+TEST_F(StocsEstimatorTest, TheFramesIntrinsicsMustFitTheCloud) {
+  const PipelineParams params;
+  const auto focal = static_cast<float>(camera_.fx);
+  const ObjectEstimate recovered = estimateObject(cloud_, focal, probability_, model_, params);
+  const ObjectEstimate given =
+      estimateObject(cloud_, focal, probability_, model_, params, nullptr, &camera_);
+  ASSERT_TRUE(given.estimate.found);
+  EXPECT_LT(addsOf(given.estimate), 0.05 * model_.model.diameter);
+  EXPECT_LT(addsOf(recovered.estimate), 0.05 * model_.model.diameter);
+  CameraIntrinsics other = camera_;
+  other.width = camera_.width / 2;
+  try {
+    estimateObject(cloud_, focal, probability_, model_, params, nullptr, &other);
+    ADD_FAILURE() << "intrinsics of another size were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("camera intrinsics are for 160x240 images"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   PipelineParams params;
   const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
