@@ -14,6 +14,10 @@
 //
 // When the segment carries instance regions (labelRegions), b1 is never a boundary point and all
 // four points come from b1's region, as in the authors' instance-aware sampling for packed bins.
+//
+// A focused draw (BaseWeighting::kFocused) takes every point in proportion to pi_k to the power
+// BaseSamplerParams::focus_exponent instead of pi_k; StocsEstimator uses it for an object's first
+// bases (StocsParams::focused_bases).
 
 #include <Eigen/Core>
 #include <array>
@@ -31,6 +35,12 @@ struct BaseSamplerParams {
   float wide_angle_deg = 15.0f;  ///< epsilon_1: min angle at b1 between b1b2 and b1b3 (and to 180)
   float coplanarity = 0.005f;    ///< epsilon_2: max distance of b4 from plane(b1, b2, b3), metres
   int max_attempts = 20;         ///< fresh draws of b1 before a base counts as failed
+  /// Power of pi_k in focused draws. A network's map is graded: of the cat's pixels above epsilon
+  /// on its lmo-cat map 25% are the cat's, of those above 0.8 89%. Drawn by pi_k^6, a base lies on
+  /// the object far more often, while every point still counts in the objective. Accuracy:
+  /// BENCHMARKS.md, "Focused first bases".
+  int focus_exponent = 6;
+  static constexpr int kMaxFocusExponent = 16;
 
   /// Throws InputError naming the first value out of range.
   void validate() const;
@@ -38,6 +48,9 @@ struct BaseSamplerParams {
 
 /// Indices of the four base points in the segment.
 using Base = std::array<int, 4>;
+
+/// How a draw weighs the segment's points: by pi_k (the paper) or by pi_k^focus_exponent.
+enum class BaseWeighting { kSegment, kFocused };
 
 /// Working memory of BaseSampler::sample, reused between calls to avoid allocation.
 struct BaseSamplingScratch {
@@ -52,31 +65,37 @@ class BaseSampler {
   BaseSampler(const SoftSegment& segment, const PpfHashMap& map, const BaseSamplerParams& params);
 
   /// A base, or nothing when `max_attempts` draws of b1 all led to a point with zero weight.
-  std::optional<Base> sample(Rng& rng, BaseSamplingScratch& scratch) const;
+  std::optional<Base> sample(Rng& rng, BaseSamplingScratch& scratch,
+                             BaseWeighting weighting = BaseWeighting::kSegment) const;
 
  private:
-  /// pi_k of point i (zero on region boundaries).
-  double weight(int i) const;
-  /// A point drawn from pi_k (boundary points excluded when there are regions).
-  int drawFirst(Rng& rng) const;
+  /// The points' weights under one weighting, as prefix sums (zero on region boundaries).
+  struct Weights {
+    std::vector<double> cumulative;       // in the segment's order, for drawing b1
+    std::vector<double> grid_cumulative;  // in the grid's sorted order, for b2, b3 and b4
+    /// The weight of point i.
+    double of(int i) const;
+  };
+  Weights weigh(int exponent) const;
+
   /// Finds the grid runs around b1 and their weights; false when they weigh nothing.
-  bool gatherNeighbourhood(int b1, BaseSamplingScratch& scratch) const;
-  /// A point drawn from pi_k restricted to the runs of gatherNeighbourhood.
-  int drawNear(Rng& rng, const BaseSamplingScratch& scratch) const;
-  /// A point drawn from pi_k restricted to the points of the runs that are both `geometric` (cheap
-  /// tests) and `on_model` (PPF checks, the costly ones), or -1 when there is none.
+  bool gatherNeighbourhood(const Weights& w, int b1, BaseSamplingScratch& scratch) const;
+  /// A point drawn by weight from the runs of gatherNeighbourhood.
+  int drawNear(const Weights& w, Rng& rng, const BaseSamplingScratch& scratch) const;
+  /// A point drawn by weight among the points of the runs that are both `geometric` (cheap tests)
+  /// and `on_model` (PPF checks, the costly ones), or -1 when there is none.
   template <class Geometric, class OnModel>
-  int drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_model,
+  int drawConditional(const Weights& w, Rng& rng, Geometric&& geometric, OnModel&& on_model,
                       BaseSamplingScratch& scratch) const;
-  bool tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch) const;
+  bool tryComplete(const Weights& w, Rng& rng, Base& base, BaseSamplingScratch& scratch) const;
 
   const SoftSegment& segment_;
   const PpfHashMap& map_;
   BaseSamplerParams params_;
-  std::vector<double> cumulative_;       // prefix sums of pi_k for drawing b1
-  PointGrid grid_;                       // the segment in cells of the model's longest pair
-  std::vector<double> grid_cumulative_;  // prefix sums of pi_k in the grid's sorted order
-  float reach_;                          // the model's longest pair, metres
+  PointGrid grid_;           // the segment in cells of the model's longest pair
+  Weights segment_weights_;  // pi_k
+  Weights focused_weights_;  // pi_k^focus_exponent
+  float reach_;              // the model's longest pair, metres
   float cos_wide_;
 };
 

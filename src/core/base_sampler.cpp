@@ -32,6 +32,15 @@ size_t drawByPrefixSums(Rng& rng, const std::vector<double>& cumulative) {
   return drawByPrefixSums(rng, cumulative, 0, cumulative.size());
 }
 
+/// x^n for n >= 1 by squaring: std::pow costs several times more, once per point per estimate.
+double integerPower(double x, int n) {
+  double result = 1;
+  for (; n > 0; n >>= 1, x *= x) {
+    if (n & 1) result *= x;
+  }
+  return result;
+}
+
 }  // namespace
 
 void BaseSamplerParams::validate() const {
@@ -44,6 +53,10 @@ void BaseSamplerParams::validate() const {
   if (max_attempts < 1 || max_attempts > 10000) {
     throw InputError(fmt::format("base attempts {} is outside [1, 10000]", max_attempts));
   }
+  if (focus_exponent < 1 || focus_exponent > kMaxFocusExponent) {
+    throw InputError(fmt::format("base focus exponent {} is outside [1, {}]", focus_exponent,
+                                 kMaxFocusExponent));
+  }
 }
 
 BaseSampler::BaseSampler(const SoftSegment& segment, const PpfHashMap& map,
@@ -55,58 +68,67 @@ BaseSampler::BaseSampler(const SoftSegment& segment, const PpfHashMap& map,
       reach_(std::max(map.maxDistance(), 1e-3f)),
       cos_wide_(std::cos(params.wide_angle_deg * static_cast<float>(M_PI) / 180.0f)) {
   params_.validate();
-  cumulative_.reserve(segment.size());
-  double acc = 0;
-  for (size_t i = 0; i < segment.size(); ++i) {
-    const bool on_boundary = !segment.region.empty() && segment.region[i] < 0;
-    cumulative_.push_back(acc += on_boundary ? 0.0f : segment.probability[i]);
-  }
   grid_.assign(segment.points, reach_);
-  grid_cumulative_.reserve(segment.size());
+  segment_weights_ = weigh(1);
+  if (params_.focus_exponent > 1) focused_weights_ = weigh(params_.focus_exponent);
+}
+
+BaseSampler::Weights BaseSampler::weigh(int exponent) const {
+  Weights w;
+  w.cumulative.reserve(segment_.size());
+  double acc = 0;
+  for (size_t i = 0; i < segment_.size(); ++i) {
+    const bool on_boundary = !segment_.region.empty() && segment_.region[i] < 0;
+    w.cumulative.push_back(acc +=
+                           on_boundary ? 0.0 : integerPower(segment_.probability[i], exponent));
+  }
+  w.grid_cumulative.reserve(segment_.size());
   acc = 0;
   for (uint32_t k = 0; k < grid_.size(); ++k) {
-    grid_cumulative_.push_back(acc += weight(static_cast<int>(grid_.originalIndex(k))));
+    w.grid_cumulative.push_back(acc += w.of(static_cast<int>(grid_.originalIndex(k))));
   }
+  return w;
 }
 
-double BaseSampler::weight(int i) const {
-  return cumulative_[i] - sumBefore(cumulative_, static_cast<size_t>(i));
+double BaseSampler::Weights::of(int i) const {
+  return cumulative[i] - sumBefore(cumulative, static_cast<size_t>(i));
 }
 
-int BaseSampler::drawFirst(Rng& rng) const {
-  return static_cast<int>(drawByPrefixSums(rng, cumulative_));
-}
-
-std::optional<Base> BaseSampler::sample(Rng& rng, BaseSamplingScratch& scratch) const {
-  if (segment_.size() < 4 || !(cumulative_.back() > 0)) return std::nullopt;
+std::optional<Base> BaseSampler::sample(Rng& rng, BaseSamplingScratch& scratch,
+                                        BaseWeighting weighting) const {
+  const Weights& w = weighting == BaseWeighting::kFocused && params_.focus_exponent > 1
+                         ? focused_weights_
+                         : segment_weights_;
+  if (segment_.size() < 4 || !(w.cumulative.back() > 0)) return std::nullopt;
   for (int attempt = 0; attempt < params_.max_attempts; ++attempt) {
-    Base base{drawFirst(rng), -1, -1, -1};
-    if (tryComplete(rng, base, scratch)) return base;
+    Base base{static_cast<int>(drawByPrefixSums(rng, w.cumulative)), -1, -1, -1};
+    if (tryComplete(w, rng, base, scratch)) return base;
   }
   return std::nullopt;
 }
 
-bool BaseSampler::gatherNeighbourhood(int b1, BaseSamplingScratch& scratch) const {
+bool BaseSampler::gatherNeighbourhood(const Weights& w, int b1,
+                                      BaseSamplingScratch& scratch) const {
   scratch.runs.clear();
   scratch.run_cumulative.clear();
   double total = 0;
   grid_.forEachRun(segment_.points[b1], reach_, [&](uint32_t begin, uint32_t end) {
     scratch.runs.push_back({begin, end});
-    scratch.run_cumulative.push_back(total += grid_cumulative_[end - 1] -
-                                              sumBefore(grid_cumulative_, begin));
+    scratch.run_cumulative.push_back(total += w.grid_cumulative[end - 1] -
+                                              sumBefore(w.grid_cumulative, begin));
   });
   return total > 0;
 }
 
-int BaseSampler::drawNear(Rng& rng, const BaseSamplingScratch& scratch) const {
+int BaseSampler::drawNear(const Weights& w, Rng& rng, const BaseSamplingScratch& scratch) const {
   const auto [begin, end] = scratch.runs[drawByPrefixSums(rng, scratch.run_cumulative)];
-  const size_t k = drawByPrefixSums(rng, grid_cumulative_, begin, end);
+  const size_t k = drawByPrefixSums(rng, w.grid_cumulative, begin, end);
   return static_cast<int>(grid_.originalIndex(static_cast<uint32_t>(k)));
 }
 
 template <class Geometric, class OnModel>
-int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_model,
-                                 BaseSamplingScratch& scratch) const {
+int BaseSampler::drawConditional(const Weights& w, Rng& rng, Geometric&& geometric,
+                                 OnModel&& on_model, BaseSamplingScratch& scratch) const {
   // Rejection sampling in up to three rounds. Proposals from a distribution proportional to pi_k
   // on a superset of the admissible points, accepted when admissible, are distributed exactly as
   // pi_k restricted to the admissible points, and so is the result whichever round gives it.
@@ -115,9 +137,9 @@ int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_m
   // found by one scan without PPF checks; round 3 checks all of those.
   constexpr int kProposals = 128;
   for (int t = 0; t < kProposals; ++t) {
-    const int p = drawNear(rng, scratch);
-    // weight > 0: rounding at the end of a run may land on a point without weight.
-    if (weight(p) > 0 && geometric(p) && on_model(p)) return p;
+    const int p = drawNear(w, rng, scratch);
+    // Weight > 0: rounding at the end of a run may land on a point without weight.
+    if (w.of(p) > 0 && geometric(p) && on_model(p)) return p;
   }
   std::vector<int>& points = scratch.points;
   std::vector<double>& cumulative = scratch.cumulative;
@@ -127,10 +149,10 @@ int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_m
   for (const auto& [begin, end] : scratch.runs) {
     for (uint32_t k = begin; k < end; ++k) {
       const int p = static_cast<int>(grid_.originalIndex(k));
-      const double w = grid_cumulative_[k] - sumBefore(grid_cumulative_, k);
-      if (w > 0 && geometric(p)) {
+      const double weight = w.grid_cumulative[k] - sumBefore(w.grid_cumulative, k);
+      if (weight > 0 && geometric(p)) {
         points.push_back(p);
-        cumulative.push_back(total += w);
+        cumulative.push_back(total += weight);
       }
     }
   }
@@ -143,11 +165,11 @@ int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_m
   double previous = 0;
   total = 0;
   for (size_t i = 0; i < points.size(); ++i) {
-    const double w = cumulative[i] - previous;
+    const double weight = cumulative[i] - previous;
     previous = cumulative[i];
     if (on_model(points[i])) {
       points[kept] = points[i];
-      cumulative[kept++] = total += w;
+      cumulative[kept++] = total += weight;
     }
   }
   if (kept == 0) return -1;
@@ -156,7 +178,8 @@ int BaseSampler::drawConditional(Rng& rng, Geometric&& geometric, OnModel&& on_m
   return points[drawByPrefixSums(rng, cumulative)];
 }
 
-bool BaseSampler::tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch) const {
+bool BaseSampler::tryComplete(const Weights& w, Rng& rng, Base& base,
+                              BaseSamplingScratch& scratch) const {
   const auto& pts = segment_.points;
   const auto& nrm = segment_.normals;
   const bool regions = !segment_.region.empty();
@@ -169,9 +192,9 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch
 
   // pi(p | b1) ~ pi_k(p) phi(p, b1).
   const int b1 = base[0];
-  if (!gatherNeighbourhood(b1, scratch)) return false;
+  if (!gatherNeighbourhood(w, b1, scratch)) return false;
   base[1] = drawConditional(
-      rng, [&](int p) { return p != b1 && sameRegion(p); },
+      w, rng, [&](int p) { return p != b1 && sameRegion(p); },
       [&](int p) { return consistentWith(p, b1); }, scratch);
   if (base[1] < 0) return false;
 
@@ -184,7 +207,7 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch
     return len > 0 && std::abs(e12.dot(e1p) / len) <= cos_wide_;
   };
   base[2] = drawConditional(
-      rng, [&](int p) { return p != b2 && wideAngle(p) && sameRegion(p); },
+      w, rng, [&](int p) { return p != b2 && wideAngle(p) && sameRegion(p); },
       [&](int p) { return consistentWith(p, b1) && consistentWith(p, b2); }, scratch);
   if (base[2] < 0) return false;
 
@@ -193,7 +216,7 @@ bool BaseSampler::tryComplete(Rng& rng, Base& base, BaseSamplingScratch& scratch
   const int b3 = base[2];
   const Eigen::Vector3f plane_normal = e12.cross(pts[b3] - pts[b1]).normalized();
   base[3] = drawConditional(
-      rng,
+      w, rng,
       [&](int p) {
         return p != b2 && p != b3 &&
                std::abs(plane_normal.dot(pts[p] - pts[b1])) <= params_.coplanarity &&

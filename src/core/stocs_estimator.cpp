@@ -292,6 +292,9 @@ void StocsParams::validate() const {
   if (base_draw_budget < 0 || base_draw_budget > 1000000) {
     throw InputError(fmt::format("base draw budget {} is outside [0, 1000000]", base_draw_budget));
   }
+  if (focused_bases < 0 || focused_bases > 1000000) {
+    throw InputError(fmt::format("focused bases {} is outside [0, 1000000]", focused_bases));
+  }
   if (consensus_bases < 0 || consensus_bases > 1000) {
     throw InputError(fmt::format("consensus bases {} is outside [0, 1000]", consensus_bases));
   }
@@ -395,10 +398,10 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     std::vector<uint32_t> order;      // the order in which they are finished
     // One draw of a base and its hypotheses (appended to `scored`); false when no base could be
     // drawn.
-    auto drawBase = [&](Rng& rng, BaseOutcome& out) {
+    auto drawBase = [&](Rng& rng, BaseWeighting weighting, BaseOutcome& out) {
       ++out.draws;
       Clock::time_point t = Clock::now();
-      const std::optional<Base> base = sampler.sample(rng, scratch);
+      const std::optional<Base> base = sampler.sample(rng, scratch, weighting);
       out.stages.sampling += secondsSince(t);
       if (!base) return false;
       out.sampled = true;
@@ -442,8 +445,10 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
 
       // A base with nothing to verify is drawn again from its own stream (base_draw_budget).
       scored.clear();
+      const BaseWeighting weighting =
+          b < params_.focused_bases ? BaseWeighting::kFocused : BaseWeighting::kSegment;
       for (int draw = 0; draw < draws_per_base && scored.empty(); ++draw) {
-        if (!drawBase(rng, out)) return;
+        if (!drawBase(rng, weighting, out)) return;
       }
       const Clock::time_point t = Clock::now();
       out.hypotheses = static_cast<long>(scored.size());

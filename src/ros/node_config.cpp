@@ -282,6 +282,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   base.get("wide_angle_deg", p.stocs.base.wide_angle_deg);
   base.get("coplanarity", p.stocs.base.coplanarity);
   base.get("max_attempts", p.stocs.base.max_attempts);
+  base.get("focus_exponent", p.stocs.base.focus_exponent);
   base.rejectUnknownKeys();
   MapReader congruent = stocs.map("congruent");
   congruent.get("tolerance", p.stocs.congruent.tolerance);
@@ -313,6 +314,7 @@ void readEstimation(MapReader reader, stocs::PipelineParams& p) {
   free_space.rejectUnknownKeys();
   stocs.get("bases", p.stocs.bases);
   stocs.get("base_draw_budget", p.stocs.base_draw_budget);
+  stocs.get("focused_bases", p.stocs.focused_bases);
   stocs.get("consensus_bases", p.stocs.consensus_bases);
   stocs.get("time_budget", p.stocs.time_budget);
   stocs.get("seed", p.stocs.seed);

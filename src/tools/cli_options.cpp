@@ -49,6 +49,13 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
   cmd.add_option("--threads", p.stocs.threads,
                  "Threads per object (0: all cores); results do not depend on it")
       ->group(stocs);
+  cmd.add_option("--focused-bases", p.stocs.focused_bases,
+                 "The first this many bases draw their points by pi_k^focus-exponent, the others "
+                 "by pi_k (0: every base by pi_k, the paper)")
+      ->group(stocs);
+  cmd.add_option("--focus-exponent", p.stocs.base.focus_exponent,
+                 "Power of pi_k in the draws of focused bases (1 to 16)")
+      ->group(stocs);
   cmd.add_option("--wide-angle", p.stocs.base.wide_angle_deg,
                  "epsilon_1: minimum base angle at b1, degrees")
       ->group(stocs);

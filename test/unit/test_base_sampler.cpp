@@ -89,6 +89,62 @@ TEST_F(BaseSamplerTest, TheFirstPointFollowsTheSoftSegmentation) {
   EXPECT_GT(high, 0.9 * bases.size());
 }
 
+TEST_F(BaseSamplerTest, FocusedDrawsFollowAPowerOfTheSoftSegmentation) {
+  // Points with x > 0.02 get twice the probability of the others: b1 falls there with chance
+  // 2h / (2h + l) in a plain draw and 2^6 h / (2^6 h + l) in a focused one (h and l points on
+  // either side).
+  double total = 0, high_points = 0;
+  for (size_t i = 0; i < segment_.size(); ++i) {
+    const bool high = segment_.points[i].x() > 0.02f;
+    high_points += high;
+    total += segment_.probability[i] = high ? 1.0f : 0.5f;
+  }
+  for (float& p : segment_.probability) p /= static_cast<float>(total);
+  const double low_points = static_cast<double>(segment_.size()) - high_points;
+  BaseSamplerParams params;
+  params.focus_exponent = 6;
+  const BaseSampler sampler(segment_, map_, params);
+  auto highCounts = [&](BaseWeighting weighting, int& first, int& all_four) {
+    Rng rng(21);
+    BaseSamplingScratch scratch;
+    int drawn = 0;
+    first = all_four = 0;
+    for (int k = 0; k < 600; ++k) {
+      const auto base = sampler.sample(rng, scratch, weighting);
+      if (!base) continue;
+      ++drawn;
+      first += segment_.points[(*base)[0]].x() > 0.02f;
+      all_four += std::all_of(base->begin(), base->end(),
+                              [&](int i) { return segment_.points[i].x() > 0.02f; });
+    }
+    return drawn;
+  };
+  auto expectBinomial = [](int observed, int n, double p, const char* what) {
+    const double sigma = std::sqrt(n * p * (1 - p));
+    EXPECT_NEAR(observed, n * p, 4 * sigma + 1) << what;
+  };
+  int first_plain = 0, four_plain = 0, first_focused = 0, four_focused = 0;
+  const int n_plain = highCounts(BaseWeighting::kSegment, first_plain, four_plain);
+  const int n_focused = highCounts(BaseWeighting::kFocused, first_focused, four_focused);
+  ASSERT_GT(n_plain, 550);
+  ASSERT_GT(n_focused, 550);
+  expectBinomial(first_plain, n_plain, 2 * high_points / (2 * high_points + low_points), "plain");
+  expectBinomial(first_focused, n_focused, 64 * high_points / (64 * high_points + low_points),
+                 "focused");
+  // b2, b3 and b4 follow the same weights: whole bases on the favoured side become far more common.
+  EXPECT_GT(four_focused, 2 * four_plain);
+
+  // Exponent 1: a focused draw is the plain one.
+  params.focus_exponent = 1;
+  const BaseSampler unfocused(segment_, map_, params);
+  Rng a(5), b(5);
+  BaseSamplingScratch scratch;
+  for (int k = 0; k < 20; ++k) {
+    EXPECT_EQ(unfocused.sample(a, scratch, BaseWeighting::kFocused),
+              sampler.sample(b, scratch, BaseWeighting::kSegment));
+  }
+}
+
 TEST_F(BaseSamplerTest, TheLastPointFollowsTheSoftSegmentationAmongTheAdmissiblePoints) {
   // b4 is drawn from pi_k restricted to the points that pass every test given b1, b2 and b3. A
   // clutter of 2000 points within 1.5 mm, beside the object and within reach of b1, holds 95% of
@@ -201,6 +257,13 @@ TEST(BaseSamplerParams, OutOfRangeValuesAreRejected) {
   p = BaseSamplerParams{};
   p.max_attempts = 0;
   EXPECT_THROW(p.validate(), InputError);
+  p = BaseSamplerParams{};
+  p.focus_exponent = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p.focus_exponent = BaseSamplerParams::kMaxFocusExponent + 1;
+  EXPECT_THROW(p.validate(), InputError);
+  p.focus_exponent = 1;
+  EXPECT_NO_THROW(p.validate());
 }
 
 }  // namespace

@@ -239,10 +239,11 @@ TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget)
   params.stocs.bases = 10;
   params.stocs.consensus_bases = 0;
   params.stocs.base_draw_budget = 0;  // one draw per base
+  params.stocs.focused_bases = 0;     // focused draws keep off the table's low probabilities
   const SoftSegment seg = segment(params);
   const PoseEstimate once = StocsEstimator(model_, params.stocs).estimate(seg);
   EXPECT_EQ(once.base_draws, once.bases_sampled);
-  // The segment bleeds onto the table, and some bases straddle it and the block.
+  // The segment bleeds onto the table, and some of the paper's bases straddle it and the block.
   ASSERT_LT(once.bases_with_sets, params.stocs.bases);
 
   params.stocs.base_draw_budget = 100;  // up to 10 draws per base
@@ -264,6 +265,35 @@ TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget)
   EXPECT_EQ(full.base_draws, full.bases_sampled);
   EXPECT_EQ(full.pose.matrix(), paper.pose.matrix());
   EXPECT_EQ(full.hypotheses, paper.hypotheses);
+}
+
+TEST_F(StocsEstimatorTest, OnlyTheFirstBasesAreFocused) {
+  PipelineParams params;
+  params.stocs.seed = 6;
+  params.stocs.bases = 20;
+  params.stocs.consensus_bases = 0;
+  const SoftSegment seg = segment(params);
+  auto run = [&](int focused_bases, int exponent) {
+    StocsParams p = params.stocs;
+    p.focused_bases = focused_bases;
+    p.base.focus_exponent = exponent;
+    return StocsEstimator(model_, p).estimate(seg);
+  };
+  // No focused base and focused bases at exponent 1 are the paper's draws alike.
+  const PoseEstimate paper = run(0, 1);
+  const PoseEstimate unfocused = run(0, 6);
+  const PoseEstimate exponent_one = run(10, 1);
+  EXPECT_EQ(unfocused.hypotheses, paper.hypotheses);
+  EXPECT_EQ(unfocused.pose.matrix(), paper.pose.matrix());
+  EXPECT_EQ(exponent_one.hypotheses, paper.hypotheses);
+  EXPECT_EQ(exponent_one.pose.matrix(), paper.pose.matrix());
+  // Focusing changes the draws of the first bases only: with the first 10 focused, the last 10
+  // bases are the paper's, so the hypotheses differ from both extremes.
+  const PoseEstimate first = run(10, 6);
+  const PoseEstimate every = run(20, 6);
+  EXPECT_NE(first.hypotheses, paper.hypotheses);
+  EXPECT_NE(first.hypotheses, every.hypotheses);
+  EXPECT_TRUE(first.found && every.found);
 }
 
 // A caller that knows the frame's intrinsics passes them; intrinsics of another image size are an
@@ -382,6 +412,11 @@ TEST(StocsParams, OutOfRangeValuesAreRejected) {
   p.consensus_bases = 1001;
   EXPECT_THROW(p.validate(), InputError);
   p.consensus_bases = 1000;
+  EXPECT_NO_THROW(p.validate());
+  p = StocsParams{};
+  p.focused_bases = -1;
+  EXPECT_THROW(p.validate(), InputError);
+  p.focused_bases = 0;
   EXPECT_NO_THROW(p.validate());
   p = StocsParams{};
   p.base_draw_budget = -1;

@@ -75,6 +75,7 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.base.wide_angle_deg, d.stocs.base.wide_angle_deg);
   EXPECT_EQ(p.stocs.base.coplanarity, d.stocs.base.coplanarity);
   EXPECT_EQ(p.stocs.base.max_attempts, d.stocs.base.max_attempts);
+  EXPECT_EQ(p.stocs.base.focus_exponent, d.stocs.base.focus_exponent);
   EXPECT_EQ(p.stocs.congruent.tolerance, d.stocs.congruent.tolerance);
   EXPECT_EQ(p.stocs.congruent.max_sets, d.stocs.congruent.max_sets);
   EXPECT_EQ(p.stocs.congruent.min_line_angle_deg, d.stocs.congruent.min_line_angle_deg);
@@ -84,6 +85,7 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_EQ(p.stocs.finished_per_base, d.stocs.finished_per_base);
   EXPECT_EQ(p.stocs.consensus_bases, d.stocs.consensus_bases);
   EXPECT_EQ(p.stocs.base_draw_budget, d.stocs.base_draw_budget);
+  EXPECT_EQ(p.stocs.focused_bases, d.stocs.focused_bases);
   EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
   EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
   EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
@@ -130,7 +132,8 @@ model_cache: none
 estimation:
   segment: {min_probability: 0.3, samples_per_voxel: 0, normals: {radius: 0.02}}
   model: {ppf: {angle_step_deg: 12}}
-  stocs: {bases: 40, base_draw_budget: 120, consensus_bases: 6, seed: 9, instances: 4, instance_separation: 0.2, min_normal_agreement: 2,
+  stocs: {bases: 40, base_draw_budget: 120, focused_bases: 3, base: {focus_exponent: 2}, consensus_bases: 6, seed: 9, instances: 4,
+          instance_separation: 0.2, min_normal_agreement: 2,
           finished_per_base: 7, icp: {enabled: false, candidates: 3, screening_iterations: 4, finalists: 3}, free_space: {enabled: false, margin: 0.02},
           lcp: {distance: 0.004, coarse_fraction: 0.5, coarse_ratio: 0.3}}
 )");
@@ -186,6 +189,8 @@ estimation:
   EXPECT_EQ(c.estimation.stocs.finished_per_base, 7);
   EXPECT_EQ(c.estimation.stocs.consensus_bases, 6);
   EXPECT_EQ(c.estimation.stocs.base_draw_budget, 120);
+  EXPECT_EQ(c.estimation.stocs.focused_bases, 3);
+  EXPECT_EQ(c.estimation.stocs.base.focus_exponent, 2);
 }
 
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
@@ -211,6 +216,10 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
        "consensus bases -1 is outside [0, 1000]"},
       {box + "estimation: {stocs: {base_draw_budget: -1}}\n",
        "base draw budget -1 is outside [0, 1000000]"},
+      {box + "estimation: {stocs: {focused_bases: -2}}\n",
+       "focused bases -2 is outside [0, 1000000]"},
+      {box + "estimation: {stocs: {base: {focus_exponent: 0}}}\n",
+       "base focus exponent 0 is outside [1, 16]"},
       {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
       {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
       {box + "input: {probability: multichannel, channels: [box, cup]}\n",
