@@ -76,6 +76,7 @@ class BaseSampler {
     /// The weight of point i.
     double of(int i) const;
   };
+  /// pi_k^exponent of every point.
   Weights weigh(int exponent) const;
 
   /// Finds the grid runs around b1 and their weights; false when they weigh nothing.

@@ -129,9 +129,10 @@ int BaseSampler::drawNear(const Weights& w, Rng& rng, const BaseSamplingScratch&
 template <class Geometric, class OnModel>
 int BaseSampler::drawConditional(const Weights& w, Rng& rng, Geometric&& geometric,
                                  OnModel&& on_model, BaseSamplingScratch& scratch) const {
-  // Rejection sampling in up to three rounds. Proposals from a distribution proportional to pi_k
-  // on a superset of the admissible points, accepted when admissible, are distributed exactly as
-  // pi_k restricted to the admissible points, and so is the result whichever round gives it.
+  // Rejection sampling in up to three rounds. Proposals from a distribution proportional to the
+  // weights on a superset of the admissible points, accepted when admissible, are distributed
+  // exactly as the weights restricted to the admissible points, and so is the result whichever
+  // round gives it.
   // Round 1 proposes from the cells around b1. When admissible points are rare there (b4 must lie
   // in a plane), round 2 proposes among the points of those cells that pass the geometric tests,
   // found by one scan without PPF checks; round 3 checks all of those.
