@@ -105,6 +105,11 @@ TEST(Cli, BadInputsExitNonZeroWithAMessage) {
             2);
   EXPECT_NE(out.find("segment samples per voxel 0.5 is neither 0"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
+                                 " --out x.csv --focus-exponent 0",
+                             out),
+            2);
+  EXPECT_NE(out.find("base focus exponent 0 is outside [1, 16]"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
                                  " --out x.csv --scenes 9",
                              out),
             2);
