@@ -230,23 +230,22 @@ void checkPcdHeader(const std::string& path) {
                            needed, h.body_bytes));
   }
   // PCL's header parser goes on reading lines after DATA while they start with a header keyword,
-  // so binary data that happens to begin like one (after empty lines, which it skips) is parsed
-  // as header and crashes it (found by fuzz_pcd_model).
-  if (kind != "ascii") {
-    std::istringstream body(h.body_start);
-    std::string line;
-    while (std::getline(body, line) && line.empty()) {
-    }
-    std::istringstream words(line);
-    std::string first;
-    words >> first;
-    static const char* const kPrefixes[] = {"#",      "VERSION", "FIELDS",    "COLUMNS",
-                                            "SIZE",   "TYPE",    "COUNT",     "WIDTH",
-                                            "HEIGHT", "POINTS",  "VIEWPOINT", "DATA"};
-    for (const char* prefix : kPrefixes) {
-      if (first.rfind(prefix, 0) == 0) {
-        throw fail(fmt::format("PCD binary data begins like the header line '{}'", prefix));
-      }
+  // so data that happens to begin like one (after empty lines, which it skips) is parsed as
+  // header and crashes it: binary data, and ascii data such as a second "DATA" line without a
+  // kind (both found by fuzz_pcd_model).
+  std::istringstream body(h.body_start);
+  std::string line;
+  while (std::getline(body, line) && line.empty()) {
+  }
+  std::istringstream words(line);
+  std::string first;
+  words >> first;
+  static const char* const kPrefixes[] = {"#",      "VERSION", "FIELDS",    "COLUMNS",
+                                          "SIZE",   "TYPE",    "COUNT",     "WIDTH",
+                                          "HEIGHT", "POINTS",  "VIEWPOINT", "DATA"};
+  for (const char* prefix : kPrefixes) {
+    if (first.rfind(prefix, 0) == 0) {
+      throw fail(fmt::format("PCD {} data begins like the header line '{}'", kind, prefix));
     }
   }
 }

@@ -66,6 +66,18 @@ TEST(MeshIo, BinaryPcdDataThatLooksLikeAHeaderLineIsRefused) {
             std::string::npos);
 }
 
+TEST(MeshIo, AsciiPcdDataThatLooksLikeAHeaderLineIsRefused) {
+  // PCL's parser read "POINTS 4" and "DATA0" after DATA as header and threw std::out_of_range on
+  // the kind-less DATA line (found by fuzz_pcd_model).
+  const auto dir = test::scratchDir("mesh_io_pcd_ascii_body");
+  writeText(
+      dir / "body.pcd",
+      "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 4\nHEIGHT 1\n"
+      "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\nPOINTS 4\nDATA0\n0 0.0;5 0\n0 0 0.05\n");
+  EXPECT_NE(errorOf(dir / "body.pcd").find("PCD ascii data begins like the header line 'POINTS'"),
+            std::string::npos);
+}
+
 TEST(MeshIo, BadFilesGiveErrorsNamingTheFileAndProblem) {
   const auto dir = test::scratchDir("mesh_io_bad");
   EXPECT_NE(errorOf(dir / "missing.ply").find("no such file"), std::string::npos);
