@@ -1,6 +1,6 @@
 #include "stocs/normals.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -14,13 +14,48 @@ namespace {
 const Eigen::Vector3f kNoNormal =
     Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
 
-/// Smallest-eigenvalue eigenvector of a covariance, or NaN if the points are (nearly) collinear.
+/// Smallest-eigenvalue eigenvector of a covariance, or NaN if the points are (nearly) collinear
+/// (second eigenvalue at most 1e-3 of the largest). Written out rather than Eigen's closed-form
+/// SelfAdjointEigenSolver::computeDirect, which reaches all three eigenvalues through atan2, sin
+/// and cos and builds all three eigenvectors: with libm's calls that was a third of a segment
+/// normal's cost. Here the smallest root of the characteristic cubic comes by Newton's method from
+/// 0, and the eigenvector as the kernel of the shifted matrix (the cross product of two of its
+/// columns, chosen as Eigen chooses them). Double precision keeps the kernel exact when the two
+/// smaller eigenvalues nearly coincide; the normal is then any direction across the largest one.
 Eigen::Vector3f planeNormal(const Eigen::Matrix3f& covariance) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver;
-  solver.computeDirect(covariance);
-  const Eigen::Vector3f ev = solver.eigenvalues();  // ascending
-  if (!(ev[1] > 1e-3f * ev[2])) return kNoNormal;
-  return solver.eigenvectors().col(0).normalized();
+  const double trace = covariance.trace();
+  if (!(trace > 0)) return kNoNormal;                           // no spread, or NaN
+  const Eigen::Matrix3d a = covariance.cast<double>() / trace;  // eigenvalues sum to 1
+  // det(lambda I - a) = lambda^3 - lambda^2 + c1 lambda - c0.
+  const double c1 = a(0, 0) * a(1, 1) - a(0, 1) * a(0, 1) + a(0, 0) * a(2, 2) - a(0, 2) * a(0, 2) +
+                    a(1, 1) * a(2, 2) - a(1, 2) * a(1, 2);
+  const double c0 = a.determinant();
+  // Below the smallest root the cubic is negative, rising and (below 1/3, which the smallest of
+  // three eigenvalues summing to 1 never exceeds) concave: Newton's steps from 0 climb to the root
+  // without overshooting it, in one or two steps when it lies well below the others.
+  double smallest = 0;
+  for (int k = 0; k < 100; ++k) {
+    const double value = ((smallest - 1) * smallest + c1) * smallest - c0;
+    const double slope = (3 * smallest - 2) * smallest + c1;
+    if (!(slope > 0) || !(value < 0)) break;
+    const double step = value / slope;
+    smallest -= step;
+    if (!(step < -1e-15)) break;
+  }
+  // The other two from the rest of the cubic: they sum to 1 - smallest, their product is c1 less
+  // the smallest times that sum.
+  const double rest = 1 - smallest, product = c1 - smallest * rest;
+  const double spread = std::sqrt(std::max(0.0, rest * rest - 4 * product));
+  if (!(rest - spread > 1e-3 * (rest + spread))) return kNoNormal;  // 2 lambda_1 vs 2 lambda_2
+  const Eigen::Matrix3d shifted = a - smallest * Eigen::Matrix3d::Identity();
+  Eigen::Index i0 = 0;
+  shifted.diagonal().cwiseAbs().maxCoeff(&i0);
+  const Eigen::Vector3d c = shifted.col(i0);
+  const Eigen::Vector3d k0 = c.cross(shifted.col((i0 + 1) % 3));
+  const Eigen::Vector3d k1 = c.cross(shifted.col((i0 + 2) % 3));
+  const Eigen::Vector3d kernel = k0.squaredNorm() > k1.squaredNorm() ? k0 : k1;
+  if (!(kernel.squaredNorm() > 0)) return kNoNormal;
+  return kernel.normalized().cast<float>();
 }
 
 /// Points on a sphere, evenly spread (Fibonacci lattice).
@@ -55,10 +90,11 @@ Eigen::Vector3f organizedNormal(const OrganizedCloud& cloud, int index, float fo
   int n = 0;
   for (int v = std::max(0, v0 - reach); v <= std::min(cloud.height - 1, v0 + reach); v += step) {
     for (int u = std::max(0, u0 - reach); u <= std::min(cloud.width - 1, u0 + reach); u += step) {
-      const int j = v * cloud.width + u;
-      if (!cloud.isValid(j)) continue;
-      const Eigen::Vector3f d = cloud.points[j] - p;  // centred on p for numerical accuracy
-      if (d.squaredNorm() > r2) continue;
+      // Centred on p for numerical accuracy. The radius test also turns away invalid pixels:
+      // NaN fails it, and a pixel with no depth lies at the origin, farther from p than the
+      // radius whenever p is not within the radius of the camera.
+      const Eigen::Vector3f d = cloud.points[v * cloud.width + u] - p;
+      if (!(d.squaredNorm() <= r2)) continue;
       sum += d;
       outer += d * d.transpose();
       ++n;

@@ -1,7 +1,9 @@
 // Model preparation: even sampling and outward normals, including concave shapes.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <random>
 
 #include "stocs/error.h"
 #include "stocs/normals.h"
@@ -110,6 +112,64 @@ TEST(Normals, MedianSpacingOfAGrid) {
     for (int y = 0; y < 20; ++y) grid.emplace_back(0.003f * x, 0.003f * y, 0);
   }
   EXPECT_NEAR(medianSpacing(grid), 0.003f, 1e-6f);
+}
+
+// The normals' own smallest-eigenvector solver against Eigen's iterative one: with every point a
+// neighbour of every other, each PCA normal is that of the whole cloud's covariance.
+TEST(Normals, PcaNormalIsTheSmallestEigenvectorOfTheCovariance) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> gauss;
+  std::uniform_real_distribution<float> uniform(0, 1);
+  for (int trial = 0; trial < 60; ++trial) {
+    // Spreads from a flat sheet (1e-4 of the largest) to nearly isotropic (0.9), the middle one
+    // kept clear of the smallest so that the normal is well defined.
+    const float smallest = std::pow(10.0f, -4.0f * uniform(rng)) * 0.9f;
+    const Eigen::Vector3f spread(
+        0.01f, 0.01f * (smallest + (1 - smallest) * (0.5f + uniform(rng) / 2)), 0.01f * smallest);
+    const Eigen::Matrix3f rotation =
+        Eigen::Quaternionf(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().matrix();
+    std::vector<Eigen::Vector3f> points;
+    for (int i = 0; i < 100; ++i) {
+      const Eigen::Vector3f g(gauss(rng), gauss(rng), gauss(rng));
+      points.push_back(Eigen::Vector3f(0.3f, -0.1f, 0.8f) + rotation * spread.cwiseProduct(g));
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3f& p : points) mean += p.cast<double>();
+    mean /= static_cast<double>(points.size());
+    Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+    for (const Eigen::Vector3f& p : points) {
+      covariance += (p.cast<double>() - mean) * (p.cast<double>() - mean).transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
+    const Eigen::Vector3d expected = solver.eigenvectors().col(0);
+    const std::vector<Eigen::Vector3f> normals = estimatePcaNormals(points, 100);
+    for (size_t i = 0; i < points.size(); i += 33) {
+      ASSERT_NEAR(normals[i].norm(), 1.0f, 1e-5f) << trial;
+      // Within 0.1 degrees of a direction that float rounding of the points leaves uncertain.
+      EXPECT_GT(std::abs(normals[i].cast<double>().dot(expected)), std::cos(0.1 * M_PI / 180))
+          << "trial " << trial << " eigenvalues " << solver.eigenvalues().transpose();
+    }
+  }
+}
+
+TEST(Normals, CollinearPointsHaveNoPcaNormal) {
+  // No plane through a line: every point falls back to the +z default.
+  std::vector<Eigen::Vector3f> line;
+  for (int i = 0; i < 30; ++i) line.emplace_back(0.1f + 0.002f * i, 0.2f - 0.001f * i, 0.7f);
+  for (const Eigen::Vector3f& n : estimatePcaNormals(line, 8))
+    EXPECT_EQ(n, Eigen::Vector3f::UnitZ());
+  // A line with a hair of spread across it is still a line (second spread below 1e-3 of the
+  // first in variance), a thin strip is not.
+  for (const float width : {1e-5f, 1e-3f}) {
+    std::vector<Eigen::Vector3f> strip = line;
+    for (size_t i = 0; i < strip.size(); ++i) strip[i].z() += (i % 2 ? width : -width);
+    const Eigen::Vector3f n = estimatePcaNormals(strip, 30)[15];
+    if (width < 1e-4f) {
+      EXPECT_EQ(n, Eigen::Vector3f::UnitZ());
+    } else {
+      EXPECT_NEAR(std::abs(n.dot(Eigen::Vector3f(1, 2, 0).normalized())), 1.0f, 1e-4f);
+    }
+  }
 }
 
 }  // namespace
