@@ -58,8 +58,8 @@ struct SoftSegment {
 /// size (see toProbabilityImage). `focal_px` sizes the normal neighbourhoods and the voxels' pixel
 /// footprint. Pixels without depth or without a normal are left out; the result may be empty.
 /// Throws InputError on a size or type mismatch. The pixel scan, the representatives and the
-/// normals run on `threads` threads (the grouping between them in image order); the result does not
-/// depend on it.
+/// normals run on `threads` threads (the merge of the chunks between them in image order); the
+/// result does not depend on it.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
                              float focal_px, const SoftSegmentParams& params, int threads = 1);
 

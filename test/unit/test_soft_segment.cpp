@@ -257,8 +257,9 @@ TEST_F(SoftSegmentTest, VoxelsMatchAPlainGroupingOnARoughSurface) {
   ASSERT_GT(groups.size(), 300u);
   ASSERT_LT(groups.size(), 4000u) << "voxels should hold several pixels";
   // The segment keeps the groups whose representative has a normal (a few at the image border
-  // have none), in the same order, whatever the number of row bands it is scanned in (voxels
-  // span the bands' borders; 3 bands split the 80 rows unevenly).
+  // have none), in the same order and with the same sums, whatever the number of threads it is
+  // scanned on (the 80 rows make 5 chunks of 16, and voxels of about 3 pixels span their borders:
+  // their sums go on across chunks).
   for (int threads : {1, 2, 3}) {
     const SoftSegment s =
         buildSoftSegment(cloud, prob_, static_cast<float>(k_.fx), params, threads);
