@@ -8,6 +8,7 @@
 #include <chrono>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -115,6 +116,7 @@ struct Hypothesis {
   Eigen::Isometry3f pose;
   float score;
   int region;
+  int base;               // the base it is the best of
   bool refined = false;   // ICP moved the pose and did not lower the objective
   bool polished = false;  // refinement was tried
 };
@@ -151,43 +153,75 @@ Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefine
   return judged(h, &pose, model, scorer, free_space);
 }
 
+/// A candidate's refinement under way: its ICP run, and the candidate judged at the run's pose.
+struct Refinement {
+  Hypothesis start;  // the unrefined candidate
+  IcpRun run;
+  std::optional<Hypothesis> judged;  // at the run's pose, once judged there
+
+  explicit Refinement(const Hypothesis& h) : start(h), run(h.pose) {}
+};
+
+/// The steps every candidate takes before the finalists are chosen (IcpParams::
+/// screening_iterations), or all of them when there is no screening: screening is off, or no more
+/// than IcpParams::finalists candidates would take part.
+int firstSteps(const IcpParams& icp, size_t candidates) {
+  const bool screening = icp.screening_iterations > 0 &&
+                         icp.screening_iterations < icp.iterations &&
+                         candidates > static_cast<size_t>(icp.finalists);
+  return screening ? icp.screening_iterations : icp.iterations;
+}
+
+/// Runs `r` on to `steps` steps in all (unless it finished) and judges it there.
+void refineTo(Refinement& r, int steps, const ObjectModel& model, const IcpRefiner& icp,
+              const LcpScorer& scorer, const FreeSpaceCheck* free_space) {
+  if (r.judged && (r.run.finished || r.run.iterations >= steps)) return;
+  icp.iterate(model, r.run, steps, r.start.region, &scorer);
+  r.judged = judged(r.start, &r.run.pose, model, scorer, free_space);
+}
+
 /// The `first` best of `ranked` refined, in parallel: each refinement is independent and reads only
-/// shared const state. With `screen` and IcpParams::screening_iterations, every candidate first
-/// takes that many steps, and only the IcpParams::finalists best of them by the judged objective
-/// take the others: a candidate's first steps settle whether it is in the running, and most of
-/// the ICP time went into the later steps of candidates that then lost. When several instances
-/// are wanted every candidate may be one, and all are refined to the end.
+/// shared const state. With `screen`, every candidate first takes firstSteps() steps, and only the
+/// IcpParams::finalists best of them by the judged objective take the others: a candidate's first
+/// steps settle whether it is in the running, and most of the ICP time went into the later steps
+/// of candidates that then lost. When several instances are wanted every candidate may be one, and
+/// all are refined to the end. `early`, per base, holds refinements that the base loop began
+/// (their first steps taken); the others begin here.
 std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, size_t first,
                                          bool screen, const ObjectModel& model,
                                          const IcpRefiner* icp, const LcpScorer& scorer,
-                                         const FreeSpaceCheck* free_space, int threads) {
+                                         const FreeSpaceCheck* free_space,
+                                         std::vector<std::optional<Refinement>>& early,
+                                         int threads) {
   std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
-  const int screening = icp && screen ? icp->params().screening_iterations : 0;
-  const auto finalists = icp ? static_cast<size_t>(icp->params().finalists) : first;
-  if (screening <= 0 || screening >= icp->params().iterations || first <= finalists) {
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (size_t k = 0; k < first; ++k) pool[k] = refine(ranked[k], model, icp, scorer, free_space);
+  if (!icp) {
+    for (size_t k = 0; k < first; ++k)
+      pool[k] = judged(ranked[k], nullptr, model, scorer, free_space);
     return pool;
   }
-  std::vector<IcpRun> runs;
+  const IcpParams& params = icp->params();
+  const int steps = screen ? firstSteps(params, first) : params.iterations;
+  std::vector<Refinement> runs;
   runs.reserve(first);
-  for (size_t k = 0; k < first; ++k) runs.emplace_back(ranked[k].pose);
-  auto step = [&](size_t k, int until) {
-    icp->iterate(model, runs[k], until, ranked[k].region, &scorer);
-    pool[k] = judged(ranked[k], &runs[k].pose, model, scorer, free_space);
+  for (size_t k = 0; k < first; ++k) {
+    std::optional<Refinement>& begun = early[static_cast<size_t>(ranked[k].base)];
+    runs.push_back(begun ? std::move(*begun) : Refinement(ranked[k]));
+  }
+  auto runTo = [&](size_t k, int until) {
+    refineTo(runs[k], until, model, *icp, scorer, free_space);
+    pool[k] = *runs[k].judged;
   };
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t k = 0; k < first; ++k) step(k, screening);
+  for (size_t k = 0; k < first; ++k) runTo(k, steps);
+  if (steps == params.iterations) return pool;
   // The finalists: best judged objective first, ties to the better unrefined rank.
   std::vector<size_t> order(first);
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return pool[a].score > pool[b].score; });
-  order.resize(finalists);
+  order.resize(static_cast<size_t>(params.finalists));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t f = 0; f < order.size(); ++f) {
-    if (!runs[order[f]].finished) step(order[f], icp->params().iterations);
-  }
+  for (size_t f = 0; f < order.size(); ++f) runTo(order[f], params.iterations);
   return pool;
 }
 
@@ -200,10 +234,12 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           size_t refined_bases, size_t count,
                                           const ObjectModel& model, const LcpScorer& scorer,
                                           const IcpRefiner* icp, const StocsParams& params,
-                                          const FreeSpaceCheck* free_space, int threads) {
+                                          const FreeSpaceCheck* free_space,
+                                          std::vector<std::optional<Refinement>>& early,
+                                          int threads) {
   const size_t first = std::min(refined_bases, ranked.size());
   std::vector<Hypothesis> pool =
-      refineCandidates(ranked, first, count == 1, model, icp, scorer, free_space, threads);
+      refineCandidates(ranked, first, count == 1, model, icp, scorer, free_space, early, threads);
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
 
@@ -385,6 +421,18 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   const auto finished = static_cast<size_t>(params_.finished_per_base);
   const int draws_per_base = std::max(1, params_.base_draw_budget / params_.bases);
   BaseDispenser dispenser(params_.bases, consensus ? &*consensus : nullptr, outcomes);
+  // With no more bases than ICP candidates, every base's best is a candidate: a thread out of bases
+  // begins refining those of finished bases (their first steps, firstSteps) while the other
+  // threads still run theirs. At 3 bases on 2 cores one core used to run the third base alone and
+  // then the third ICP screening alone. The refinements are the same whenever they run.
+  const IcpRefiner* icp = indexes.icp ? &*indexes.icp : nullptr;
+  const bool refine_early =
+      icp && params_.instances == 1 && static_cast<size_t>(params_.bases) <= refined_bases;
+  const int early_steps = icp ? firstSteps(icp->params(), static_cast<size_t>(params_.bases)) : 0;
+  std::vector<std::optional<Refinement>> early(static_cast<size_t>(params_.bases));
+  // Per base: 0 running or not begun, 1 finished, 2 taken for early refinement.
+  std::unique_ptr<std::atomic<int>[]> base_state(new std::atomic<int>[params_.bases]());
+  std::atomic<bool> early_over{false};  // some thread found nothing to take: the rest waits
 #pragma omp parallel num_threads(threads)
   {
     // Best base scores of this thread (ascending, at most `keep`): scores below the K-th of them
@@ -497,12 +545,36 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     for (int b; (b = dispenser.next()) >= 0;) {
       runBase(b);
       dispenser.finished(b);
+      base_state[b].store(1, std::memory_order_release);
+    }
+    // Early refinement until nothing finished is left to take; then the others stop too, so that
+    // what is left is shared out after the loop rather than run by one thread while the other
+    // waits at the end of this region.
+    while (refine_early && !early_over.load(std::memory_order_relaxed)) {
+      int taken = -1;
+      for (int b = 0; b < params_.bases && taken < 0; ++b) {
+        int expected = 1;
+        if (base_state[b].compare_exchange_strong(expected, 2, std::memory_order_acq_rel))
+          taken = b;
+      }
+      if (taken < 0) {
+        early_over.store(true, std::memory_order_relaxed);
+        break;
+      }
+      const BaseOutcome& out = outcomes[static_cast<size_t>(taken)];
+      if (!(out.score > 0)) continue;  // not a candidate
+      const Clock::time_point t = Clock::now();
+      Refinement& r = early[static_cast<size_t>(taken)].emplace(
+          Hypothesis{out.pose, out.score, out.region, taken});
+      refineTo(r, early_steps, model, *icp, scorer, free_space);
+      outcomes[static_cast<size_t>(taken)].stages.refinement += secondsSince(t);
     }
   }
   dispenser.dropSpeculative();
 
   std::vector<Hypothesis> ranked;
-  for (const BaseOutcome& out : outcomes) {
+  for (size_t b = 0; b < outcomes.size(); ++b) {
+    const BaseOutcome& out = outcomes[b];
     result.bases_tried += out.tried;
     result.bases_sampled += out.sampled;
     result.base_draws += out.draws;
@@ -515,7 +587,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.stages.sampling += out.stages.sampling;
     result.stages.matching += out.stages.matching;
     result.stages.verification += out.stages.verification;
-    if (out.score > 0) ranked.push_back({out.pose, out.score, out.region});
+    result.stages.refinement += out.stages.refinement;  // begun early
+    if (out.score > 0) ranked.push_back({out.pose, out.score, out.region, static_cast<int>(b)});
   }
   // Highest score first; ties go to the lower base index (stable sort over base order).
   std::stable_sort(ranked.begin(), ranked.end(), higherScore);
@@ -524,10 +597,9 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     return result;
   }
   const Clock::time_point t = Clock::now();
-  result.instances =
-      selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances), model, scorer,
-                      indexes.icp ? &*indexes.icp : nullptr, params_, free_space, threads);
-  if (params_.icp.enabled) result.stages.refinement = secondsSince(t);
+  result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
+                                     model, scorer, icp, params_, free_space, early, threads);
+  if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   result.found = true;
   const InstancePose& best = result.instances.front();
   result.pose = best.pose;

@@ -127,6 +127,29 @@ TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
   EXPECT_EQ(one.hypotheses, two.hypotheses);
 }
 
+// With no more bases than ICP candidates, threads out of bases begin the refinements of finished
+// bases. One thread begins them all after its bases; with more threads than bases the idle ones
+// find nothing finished at first and leave them all to the refinement after the loop. Both give
+// the same answer, with and without screening (2 bases: no more candidates than finalists).
+TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
+  PipelineParams params;
+  params.stocs.seed = 5;
+  const SoftSegment seg = segment(params);
+  for (int bases : {2, 3, 5}) {
+    params.stocs.bases = bases;
+    params.stocs.threads = 1;
+    const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(seg);
+    ASSERT_TRUE(one.found) << bases;
+    EXPECT_TRUE(one.refined) << bases;
+    for (int threads : {2, 3, 8}) {
+      params.stocs.threads = threads;
+      const PoseEstimate many = StocsEstimator(model_, params.stocs).estimate(seg);
+      EXPECT_EQ(many.pose.matrix(), one.pose.matrix()) << bases << " bases, " << threads;
+      EXPECT_EQ(many.lcp.score, one.lcp.score) << bases << " bases, " << threads;
+    }
+  }
+}
+
 TEST_F(StocsEstimatorTest, RefinementMovesTowardTheTruthAndKeepsTheObjective) {
   PipelineParams params;
   params.stocs.seed = 7;
