@@ -191,7 +191,7 @@ bool BaseSampler::tryComplete(const Weights& w, Rng& rng, Base& base,
     return map_.consistent(pts[b], nrm[b], pts[p], nrm[p]);
   };
 
-  // pi(p | b1) ~ pi_k(p) phi(p, b1).
+  // pi(p | b1) ~ w(p) phi(p, b1), with w the draw's weights: pi_k, or its power in a focused draw.
   const int b1 = base[0];
   if (!gatherNeighbourhood(w, b1, scratch)) return false;
   base[1] = drawConditional(
