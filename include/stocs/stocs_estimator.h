@@ -116,7 +116,8 @@ struct PoseEstimate {
   long hypotheses = 0;         ///< rigid fits that passed the RMS check and were scored
   long duplicates = 0;         ///< rigid fits skipped as near-duplicates of a scored one
   long normal_mismatches = 0;  ///< rigid fits skipped by StocsParams::min_normal_agreement
-  long finished = 0;  ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
+  long finished = 0;   ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
+  long icp_steps = 0;  ///< ICP steps taken by all refined candidates
   StageSeconds stages;
   double seconds = 0;  ///< wall time of estimate()
 };

@@ -145,14 +145,6 @@ Hypothesis judged(const Hypothesis& h, const Eigen::Isometry3f* refined, const O
   return out;
 }
 
-/// `h` refined to the end (or only judged without ICP).
-Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
-                  const LcpScorer& scorer, const FreeSpaceCheck* free_space) {
-  if (!icp) return judged(h, nullptr, model, scorer, free_space);
-  const Eigen::Isometry3f pose = icp->refine(model, h.pose, h.region, &scorer);
-  return judged(h, &pose, model, scorer, free_space);
-}
-
 /// A candidate's refinement under way: its ICP run, and the candidate judged at the run's pose.
 struct Refinement {
   Hypothesis start;  // the unrefined candidate
@@ -180,19 +172,29 @@ void refineTo(Refinement& r, int steps, const ObjectModel& model, const IcpRefin
   r.judged = judged(r.start, &r.run.pose, model, scorer, free_space);
 }
 
+/// `h` refined to the end (or only judged without ICP); adds the ICP steps taken to `steps`.
+Hypothesis refine(const Hypothesis& h, const ObjectModel& model, const IcpRefiner* icp,
+                  const LcpScorer& scorer, const FreeSpaceCheck* free_space, long& steps) {
+  if (!icp) return judged(h, nullptr, model, scorer, free_space);
+  Refinement r(h);
+  refineTo(r, icp->params().iterations, model, *icp, scorer, free_space);
+  steps += r.run.iterations;
+  return *r.judged;
+}
+
 /// The `first` best of `ranked` refined, in parallel: each refinement is independent and reads only
 /// shared const state. With `screen`, every candidate first takes firstSteps() steps, and only the
 /// IcpParams::finalists best of them by the judged objective take the others: a candidate's first
 /// steps settle whether it is in the running, and most of the ICP time went into the later steps
 /// of candidates that then lost. When several instances are wanted every candidate may be one, and
 /// all are refined to the end. `early`, per base, holds refinements that the base loop began
-/// (their first steps taken); the others begin here.
+/// (their first steps taken); the others begin here. Adds the ICP steps taken to `steps`.
 std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, size_t first,
                                          bool screen, const ObjectModel& model,
                                          const IcpRefiner* icp, const LcpScorer& scorer,
                                          const FreeSpaceCheck* free_space,
-                                         std::vector<std::optional<Refinement>>& early,
-                                         int threads) {
+                                         std::vector<std::optional<Refinement>>& early, int threads,
+                                         long& steps) {
   std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
   if (!icp) {
     for (size_t k = 0; k < first; ++k)
@@ -200,7 +202,7 @@ std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, 
     return pool;
   }
   const IcpParams& params = icp->params();
-  const int steps = screen ? firstSteps(params, first) : params.iterations;
+  const int first_steps = screen ? firstSteps(params, first) : params.iterations;
   std::vector<Refinement> runs;
   runs.reserve(first);
   for (size_t k = 0; k < first; ++k) {
@@ -211,9 +213,13 @@ std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, 
     refineTo(runs[k], until, model, *icp, scorer, free_space);
     pool[k] = *runs[k].judged;
   };
+  auto counted = [&] {
+    for (const Refinement& r : runs) steps += r.run.iterations;
+    return pool;
+  };
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t k = 0; k < first; ++k) runTo(k, steps);
-  if (steps == params.iterations) return pool;
+  for (size_t k = 0; k < first; ++k) runTo(k, first_steps);
+  if (first_steps == params.iterations) return counted();
   // The finalists: best judged objective first, ties to the better unrefined rank.
   std::vector<size_t> order(first);
   std::iota(order.begin(), order.end(), size_t{0});
@@ -222,7 +228,7 @@ std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, 
   order.resize(static_cast<size_t>(params.finalists));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t f = 0; f < order.size(); ++f) runTo(order[f], params.iterations);
-  return pool;
+  return counted();
 }
 
 /// Up to `count` distinct poses from the bases' best hypotheses (`ranked`, best first). The
@@ -236,10 +242,10 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
                                           const IcpRefiner* icp, const StocsParams& params,
                                           const FreeSpaceCheck* free_space,
                                           std::vector<std::optional<Refinement>>& early,
-                                          int threads) {
+                                          int threads, long& steps) {
   const size_t first = std::min(refined_bases, ranked.size());
-  std::vector<Hypothesis> pool =
-      refineCandidates(ranked, first, count == 1, model, icp, scorer, free_space, early, threads);
+  std::vector<Hypothesis> pool = refineCandidates(ranked, first, count == 1, model, icp, scorer,
+                                                  free_space, early, threads, steps);
   std::stable_sort(pool.begin(), pool.end(), higherScore);
   pool.insert(pool.end(), ranked.begin() + static_cast<std::ptrdiff_t>(first), ranked.end());
 
@@ -254,7 +260,7 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     if (taken.size() == count) break;
     if (!taken.empty() && !isNew(h)) continue;
     if (!h.polished) {
-      h = refine(h, model, icp, scorer, free_space);
+      h = refine(h, model, icp, scorer, free_space, steps);
       if (!taken.empty() && !isNew(h)) continue;  // refinement moved it onto a taken instance
     }
     taken.push_back(h);
@@ -597,8 +603,9 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     return result;
   }
   const Clock::time_point t = Clock::now();
-  result.instances = selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances),
-                                     model, scorer, icp, params_, free_space, early, threads);
+  result.instances =
+      selectInstances(ranked, refined_bases, static_cast<size_t>(params_.instances), model, scorer,
+                      icp, params_, free_space, early, threads, result.icp_steps);
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   result.found = true;
   const InstancePose& best = result.instances.front();

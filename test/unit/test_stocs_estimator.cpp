@@ -134,6 +134,9 @@ TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
 TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
   PipelineParams params;
   params.stocs.seed = 5;
+  // One screening step: on this clean scene refinements converge within a few steps, and a
+  // candidate that took more than its screening steps would go unnoticed.
+  params.stocs.icp.screening_iterations = 1;
   const SoftSegment seg = segment(params);
   for (int bases : {2, 3, 5}) {
     params.stocs.bases = bases;
@@ -141,11 +144,15 @@ TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
     const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(seg);
     ASSERT_TRUE(one.found) << bases;
     EXPECT_TRUE(one.refined) << bases;
+    EXPECT_GT(one.icp_steps, 0) << bases;
     for (int threads : {2, 3, 8}) {
       params.stocs.threads = threads;
       const PoseEstimate many = StocsEstimator(model_, params.stocs).estimate(seg);
       EXPECT_EQ(many.pose.matrix(), one.pose.matrix()) << bases << " bases, " << threads;
       EXPECT_EQ(many.lcp.score, one.lcp.score) << bases << " bases, " << threads;
+      // The same steps: begun early, a candidate still takes only the screening steps unless it
+      // is a finalist.
+      EXPECT_EQ(many.icp_steps, one.icp_steps) << bases << " bases, " << threads;
     }
   }
 }
