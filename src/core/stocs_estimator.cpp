@@ -198,7 +198,7 @@ std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, 
   std::vector<Hypothesis> pool(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(first));
   if (!icp) {
     for (size_t k = 0; k < first; ++k)
-      pool[k] = judged(ranked[k], nullptr, model, scorer, free_space);
+      pool[k] = refine(ranked[k], model, icp, scorer, free_space, steps);
     return pool;
   }
   const IcpParams& params = icp->params();
@@ -213,22 +213,20 @@ std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, 
     refineTo(runs[k], until, model, *icp, scorer, free_space);
     pool[k] = *runs[k].judged;
   };
-  auto counted = [&] {
-    for (const Refinement& r : runs) steps += r.run.iterations;
-    return pool;
-  };
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 0; k < first; ++k) runTo(k, first_steps);
-  if (first_steps == params.iterations) return counted();
-  // The finalists: best judged objective first, ties to the better unrefined rank.
-  std::vector<size_t> order(first);
-  std::iota(order.begin(), order.end(), size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return pool[a].score > pool[b].score; });
-  order.resize(static_cast<size_t>(params.finalists));
+  if (first_steps < params.iterations) {
+    // The finalists: best judged objective first, ties to the better unrefined rank.
+    std::vector<size_t> order(first);
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return pool[a].score > pool[b].score; });
+    order.resize(static_cast<size_t>(params.finalists));
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t f = 0; f < order.size(); ++f) runTo(order[f], params.iterations);
-  return counted();
+    for (size_t f = 0; f < order.size(); ++f) runTo(order[f], params.iterations);
+  }
+  for (const Refinement& r : runs) steps += r.run.iterations;
+  return pool;
 }
 
 /// Up to `count` distinct poses from the bases' best hypotheses (`ranked`, best first). The
