@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/synthetic_dataset.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/sim/synthetic_dataset.h"
 
 namespace stocs::bench {
 namespace {

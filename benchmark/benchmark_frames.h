@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "stocs/pipeline.h"
+#include "stocs/estimation/pipeline.h"
 
 namespace stocs::bench {
 

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "benchmark_frames.h"
-#include "stocs/base_sampler.h"
-#include "stocs/congruent_set_matcher.h"
-#include "stocs/free_space_check.h"
-#include "stocs/lcp_scorer.h"
-#include "stocs/rigid_fit.h"
+#include "stocs/estimation/base_sampler.h"
+#include "stocs/estimation/congruent_set_matcher.h"
+#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/geometry/rigid_fit.h"
 
 namespace stocs::bench {
 namespace {

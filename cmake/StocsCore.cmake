@@ -1,19 +1,59 @@
-# The ROS-free core library.
-file(GLOB STOCS_CORE_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/core/*.cpp)
-add_library(stocs_core ${STOCS_CORE_SOURCES})
-target_include_directories(stocs_core
-  PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
-  PRIVATE ${PROJECT_SOURCE_DIR}/src/core ${XXHASH_INCLUDE_DIR} ${NANOFLANN_INCLUDE_DIR})
-target_include_directories(stocs_core SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
-target_link_libraries(stocs_core
-  PUBLIC Eigen3::Eigen opencv_core opencv_imgproc opencv_imgcodecs fmt::fmt
-  PRIVATE nlohmann_json::nlohmann_json ${PCL_COMMON_LIBRARIES} ${PCL_IO_LIBRARIES}
-          ${XXHASH_LIBRARY} OpenMP::OpenMP_CXX Threads::Threads)
-target_compile_definitions(stocs_core PRIVATE ${PCL_DEFINITIONS})
-set_target_properties(stocs_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
+# The ROS-free core: one library per module, each a folder of public headers
+# (include/stocs/<module>/) and sources with their private headers (src/<module>/). Dependencies run
+# one way:
+#   util <- geometry <- io <- model <- estimation      (the algorithm and what it needs)
+#   geometry, io <- sim                                 (scene generator, segmentation simulator)
+#   io, sim <- eval                                     (metrics and dataset evaluation)
+# `stocs::core` is all of them, for programs that use every module (the tool, the tests).
+
+# stocs_add_module(NAME [PUBLIC deps...] [PRIVATE deps...]): the library stocs_NAME (alias
+# stocs::NAME) of src/NAME/*.cpp, or an interface library for a module of headers only.
+function(stocs_add_module module)
+  cmake_parse_arguments(M "" "" "PUBLIC;PRIVATE" ${ARGN})
+  set(target stocs_${module})
+  file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${module}/*.cpp)
+  if(sources)
+    add_library(${target} ${sources})
+    target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/src/${module})
+    target_link_libraries(${target} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE})
+    set_target_properties(${target} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    set(scope PUBLIC)
+  else()
+    add_library(${target} INTERFACE)
+    target_link_libraries(${target} INTERFACE ${M_PUBLIC})
+    set(scope INTERFACE)
+  endif()
+  target_include_directories(${target} ${scope}
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${module})
+  add_library(stocs::${module} ALIAS ${target})
+  set_property(GLOBAL APPEND PROPERTY STOCS_CORE_MODULES ${target})
+endfunction()
+
+stocs_add_module(util PUBLIC Eigen3::Eigen fmt::fmt)
+stocs_add_module(geometry PUBLIC stocs_util opencv_core)
+# knn_index.h, a public header, wraps nanoflann (header-only).
+target_include_directories(stocs_geometry SYSTEM PUBLIC $<BUILD_INTERFACE:${NANOFLANN_INCLUDE_DIR}>)
+stocs_add_module(io PUBLIC stocs_geometry
+  PRIVATE opencv_imgcodecs nlohmann_json::nlohmann_json ${PCL_COMMON_LIBRARIES} ${PCL_IO_LIBRARIES})
+target_include_directories(stocs_io SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
+target_compile_definitions(stocs_io PRIVATE ${PCL_DEFINITIONS})
+stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
+target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
+stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
+stocs_add_module(sim PUBLIC stocs_io
+  PRIVATE opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)
+stocs_add_module(eval PUBLIC stocs_io stocs_sim)
+
+add_library(stocs_core INTERFACE)
+target_link_libraries(stocs_core INTERFACE
+  stocs_util stocs_geometry stocs_io stocs_model stocs_estimation stocs_sim stocs_eval)
+set_target_properties(stocs_core PROPERTIES EXPORT_NAME core)
+add_library(stocs::core ALIAS stocs_core)
 
 if(STOCS_CATKIN)
-  install(TARGETS stocs_core
+  get_property(modules GLOBAL PROPERTY STOCS_CORE_MODULES)
+  install(TARGETS ${modules}
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
   install(DIRECTORY include/stocs/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/stocs)

@@ -9,7 +9,13 @@ endif()
 set(STOCS_FUZZ_SANITIZERS address,undefined)
 set(STOCS_FUZZ_COMPILE_FLAGS -fsanitize=fuzzer-no-link,${STOCS_FUZZ_SANITIZERS}
     -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
-target_compile_options(stocs_core PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
+get_property(STOCS_FUZZ_MODULES GLOBAL PROPERTY STOCS_CORE_MODULES)
+foreach(module ${STOCS_FUZZ_MODULES})
+  get_target_property(type ${module} TYPE)
+  if(NOT type STREQUAL "INTERFACE_LIBRARY")
+    target_compile_options(${module} PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
+  endif()
+endforeach()
 
 # The ROS message conversion is compiled from src/ros directly against the ROS headers and
 # libraries in /usr, so the fuzz build needs neither catkin nor the generated messages of this

@@ -13,7 +13,8 @@ generate_messages(DEPENDENCIES std_msgs geometry_msgs sensor_msgs)
 
 catkin_package(
   INCLUDE_DIRS include
-  LIBRARIES stocs_core stocs_methods stocs_ros
+  LIBRARIES stocs_geometry stocs_io stocs_model stocs_estimation stocs_sim stocs_eval stocs_methods
+            stocs_ros
   CATKIN_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime
 )
 
@@ -30,6 +31,8 @@ add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)
 target_link_libraries(stocs_node PRIVATE stocs_ros)
 add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_main.cpp)
 target_link_libraries(scene_publisher PRIVATE stocs_ros)
+add_executable(config_reference ${PROJECT_SOURCE_DIR}/src/ros/config_reference_main.cpp)
+target_link_libraries(config_reference PRIVATE stocs_ros)
 add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder_main.cpp)
 target_link_libraries(demo_recorder PRIVATE stocs_ros)
 add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/nodelets.cpp)

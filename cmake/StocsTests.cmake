@@ -41,7 +41,7 @@ function(stocs_add_gtest name)
       PROPERTIES ENVIRONMENT "STOCS_DATASETS=${STOCS_DATASETS_DIR}" DISCOVERY_TIMEOUT 60)
   endif()
   target_link_libraries(${name} stocs_test_support stocs_core stocs_methods)
-  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/src/core)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test)
   # The data folder and scratch folder are compiled into stocs_test_support; the CLI tests need the
   # tool's path.
   target_compile_definitions(${name} PRIVATE STOCS_TOOL_PATH="$<TARGET_FILE:stocs>")

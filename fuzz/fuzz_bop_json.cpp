@@ -1,7 +1,7 @@
 // The BOP JSON files (scene_camera.json, scene_gt.json, models/models_info.json): the input is
 // written as each of them in turn and read by its BopDataset parser.
 #include "fuzz_support.h"
-#include "stocs/bop_dataset.h"
+#include "stocs/io/bop_dataset.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using stocs::fuzz::parseInputAs;

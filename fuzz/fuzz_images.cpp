@@ -3,7 +3,7 @@
 #include <opencv2/core.hpp>
 
 #include "fuzz_support.h"
-#include "stocs/bop_dataset.h"
+#include "stocs/io/bop_dataset.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using stocs::fuzz::parseInputAs;

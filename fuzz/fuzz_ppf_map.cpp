@@ -6,7 +6,7 @@
 
 #include "byte_io.h"
 #include "fuzz_support.h"
-#include "stocs/ppf_hash_map.h"
+#include "stocs/model/ppf_hash_map.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   stocs::fuzz::ByteReader in(data, size);

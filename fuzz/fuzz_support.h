@@ -11,7 +11,7 @@
 #include <fstream>
 #include <string>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs::fuzz {
 

@@ -10,7 +10,7 @@
 #include "fuzz_support.h"
 #include "model_cache_setup.h"
 #include "ros_message_layout.h"
-#include "stocs/bop_dataset.h"
+#include "stocs/io/bop_dataset.h"
 
 namespace fs = std::filesystem;
 using stocs::fuzz::ByteWriter;

@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <string>
 
-#include "../src/core/model_cache_format.h"
-#include "stocs/model_cache.h"
-#include "stocs/ply_writer.h"
-#include "stocs/shape_meshes.h"
+#include "../src/model/model_cache_format.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/model/model_cache.h"
+#include "stocs/sim/shape_meshes.h"
 
 namespace stocs::fuzz {
 

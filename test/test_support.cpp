@@ -9,7 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "stocs/depth_renderer.h"
+#include "stocs/sim/depth_renderer.h"
 
 namespace stocs::test {
 

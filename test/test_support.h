@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "stocs/camera.h"
-#include "stocs/mesh.h"
-#include "stocs/object_catalogue.h"
-#include "stocs/ply_writer.h"
-#include "stocs/shape_meshes.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/mesh.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/sim/object_catalogue.h"
+#include "stocs/sim/shape_meshes.h"
 
 namespace cv {
 class Mat;

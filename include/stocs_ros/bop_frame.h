@@ -5,9 +5,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/camera.h"
-#include "stocs/organized_cloud.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/io/bop_dataset.h"
 
 namespace stocs_ros {
 

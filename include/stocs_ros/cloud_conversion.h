@@ -8,8 +8,8 @@
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 
-#include "stocs/camera.h"
-#include "stocs/organized_cloud.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/organized_cloud.h"
 
 namespace cv {
 class Mat;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "stocs/model_cache.h"
+#include "stocs/model/model_cache.h"
 #include "stocs_ros/node_config.h"
 
 namespace stocs_ros {

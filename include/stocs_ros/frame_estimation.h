@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/pipeline.h"
+#include "stocs/estimation/pipeline.h"
 #include "stocs_ros/estimation_setup.h"
 
 namespace stocs_ros {

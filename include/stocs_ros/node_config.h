@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "stocs/pipeline.h"
+#include "stocs/estimation/pipeline.h"
 #include "stocs_ros/stamp_synchronizer.h"
 #include "stocs_ros/symmetric_pose.h"
 
@@ -35,6 +35,9 @@ struct InputConfig {
   double uint16_scale = 10000;  ///< mono16 probability = value / uint16_scale
   bool boundary = false;        ///< subscribe ~boundary for instance regions
   SyncParams sync;
+
+  /// The input keys but `channels` (a list), for the file reader and the docs.
+  static const stocs::ParamSet<InputConfig>& schema();
 };
 
 struct OutputConfig {
@@ -42,6 +45,8 @@ struct OutputConfig {
   bool tf = true;
   bool markers = true;
   bool estimate_on_frames = true;  ///< false: estimate only on ~estimate calls
+
+  static const stocs::ParamSet<OutputConfig>& schema();
 };
 
 struct NodeConfig {
@@ -49,8 +54,12 @@ struct NodeConfig {
   std::vector<ObjectConfig> objects;
   InputConfig input;
   OutputConfig output;
-  std::filesystem::path model_cache;  ///< folder; empty: no cache
+  std::string model_cache_setting;    ///< as written: a folder, "" (the default one) or "none"
+  std::filesystem::path model_cache;  ///< the folder it names; empty: no cache
   stocs::PipelineParams estimation;
+
+  /// Every key of the file but the objects and input.channels (lists): keys, ranges, meanings.
+  static const stocs::ParamSet<NodeConfig>& schema();
 
   /// Index of the object called `name`, or -1.
   int objectIndex(const std::string& name) const;

@@ -10,7 +10,7 @@
 
 #include <csignal>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 

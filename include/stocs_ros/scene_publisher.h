@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "stocs/bop_dataset.h"
+#include "stocs/io/bop_dataset.h"
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/node_config.h"
 

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "stocs/util/param_set.h"
+
 namespace stocs_ros {
 
 struct SyncParams {
@@ -26,6 +28,7 @@ struct SyncParams {
   /// Seconds behind the newest stamp seen before a message is dropped; 0: never.
   double max_age = 2.0;
 
+  static const stocs::ParamSet<SyncParams>& schema();
   /// Throws stocs::InputError naming the first value out of range.
   void validate() const;
 };

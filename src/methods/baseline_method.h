@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 #include <optional>
 
+#include "stocs/estimation/soft_segment.h"
 #include "stocs/methods/pose_method.h"
-#include "stocs/soft_segment.h"
 
 namespace stocs {
 

@@ -24,7 +24,7 @@
 #include <numeric>
 #include <vector>
 
-#include "stocs/random.h"
+#include "stocs/util/random.h"
 
 namespace stocs {
 namespace {

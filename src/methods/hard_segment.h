@@ -5,8 +5,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "stocs/estimation/soft_segment.h"
 #include "stocs/methods/pose_method.h"
-#include "stocs/soft_segment.h"
 
 namespace stocs {
 

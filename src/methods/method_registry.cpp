@@ -5,9 +5,9 @@
 #include <map>
 
 #include "baseline_methods.h"
-#include "stocs/error.h"
 #include "stocs/methods/pose_method.h"
 #include "stocs/methods/stocs_methods.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 

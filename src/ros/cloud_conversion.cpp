@@ -9,7 +9,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/image_conversion.h"
 
 namespace stocs_ros {

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {

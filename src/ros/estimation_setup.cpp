@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 

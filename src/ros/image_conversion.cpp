@@ -4,8 +4,8 @@
 #include <fmt/format.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "stocs/error.h"
-#include "stocs/probability_image.h"
+#include "stocs/io/probability_image.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 namespace enc = sensor_msgs::image_encodings;

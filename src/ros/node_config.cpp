@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <map>
 #include <regex>
 #include <set>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/resource_path.h"
 
 namespace stocs_ros {
@@ -175,10 +177,8 @@ ObjectConfig readObject(MapReader reader, int position, const fs::path& dir) {
   return o;
 }
 
-void readInput(MapReader reader, InputConfig& in) {
-  std::string depth = "cloud", probability = "per_object";
-  reader.get("source", depth);
-  reader.get("probability", probability);
+/// Reads `input.channels`, the one input key that is a list (the others are in the schema).
+void readChannels(MapReader& reader, InputConfig& in) {
   const YAML::Node channels = reader.node("channels");
   if (channels && !channels.IsSequence()) {
     reader.fail(channels, reader.fullName("channels"), "expected a list of object names");
@@ -186,39 +186,6 @@ void readInput(MapReader reader, InputConfig& in) {
   for (size_t k = 0; channels && k < channels.size(); ++k) {
     in.channels.push_back(
         reader.convert<std::string>(channels[k], fmt::format("input.channels[{}]", k)));
-  }
-  reader.get("uint16_scale", in.uint16_scale);
-  reader.get("boundary", in.boundary);
-  MapReader sync = reader.map("sync");
-  sync.get("tolerance", in.sync.tolerance);
-  sync.get("queue_size", in.sync.queue_size);
-  sync.get("max_age", in.sync.max_age);
-  sync.rejectUnknownKeys();
-  reader.rejectUnknownKeys();
-
-  const std::string file = reader.file().string();
-  if (depth == "cloud") {
-    in.depth = DepthSource::kCloud;
-  } else if (depth == "depth") {
-    in.depth = DepthSource::kDepthImage;
-  } else {
-    throw InputError(fmt::format("{}: input.source '{}' must be 'cloud' or 'depth'", file, depth));
-  }
-  if (probability == "per_object") {
-    in.probability = ProbabilitySource::kPerObject;
-  } else if (probability == "multichannel") {
-    in.probability = ProbabilitySource::kMultichannel;
-  } else {
-    throw InputError(fmt::format(
-        "{}: input.probability '{}' must be 'per_object' or 'multichannel'", file, probability));
-  }
-  if (!(in.uint16_scale > 0)) {
-    throw InputError(fmt::format("{}: input.uint16_scale must be positive", file));
-  }
-  try {
-    in.sync.validate();
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: input.sync: {}", file, e.what()));
   }
 }
 
@@ -252,85 +219,106 @@ void checkChannels(const NodeConfig& c) {
   }
 }
 
-void readEstimation(MapReader reader, stocs::PipelineParams& p) {
-  MapReader segment = reader.map("segment");
-  segment.get("min_probability", p.segment.min_probability);
-  segment.get("voxel_size", p.segment.voxel_size);
-  segment.get("samples_per_voxel", p.segment.samples_per_voxel);
-  MapReader normals = segment.map("normals");
-  normals.get("radius", p.segment.normals.radius);
-  normals.get("samples_per_axis", p.segment.normals.samples_per_axis);
-  normals.get("min_neighbours", p.segment.normals.min_neighbours);
-  normals.rejectUnknownKeys();
-  segment.rejectUnknownKeys();
+/// The readers of the maps on the way to each parameter, by dotted path ("" is the root), so that
+/// every map's unknown keys are rejected once all its known ones were read.
+class SchemaReader {
+ public:
+  explicit SchemaReader(MapReader& root) : root_(root) {}
 
-  MapReader model = reader.map("model");
-  MapReader sampling = model.map("sampling");
-  sampling.get("sampling_ratio", p.model.sampling.sampling_ratio);
-  sampling.get("normal_neighbours", p.model.sampling.normal_neighbours);
-  sampling.get("orientation_viewpoints", p.model.sampling.orientation_viewpoints);
-  sampling.rejectUnknownKeys();
-  MapReader ppf = model.map("ppf");
-  ppf.get("distance_step", p.model.ppf.distance_step);
-  ppf.get("angle_step_deg", p.model.ppf.angle_step_deg);
-  ppf.get("min_distance_ratio", p.model.ppf.min_distance_ratio);
-  ppf.rejectUnknownKeys();
-  model.rejectUnknownKeys();
-
-  MapReader stocs = reader.map("stocs");
-  MapReader base = stocs.map("base");
-  base.get("wide_angle_deg", p.stocs.base.wide_angle_deg);
-  base.get("coplanarity", p.stocs.base.coplanarity);
-  base.get("max_attempts", p.stocs.base.max_attempts);
-  base.get("focus_exponent", p.stocs.base.focus_exponent);
-  base.rejectUnknownKeys();
-  MapReader congruent = stocs.map("congruent");
-  congruent.get("tolerance", p.stocs.congruent.tolerance);
-  congruent.get("max_sets", p.stocs.congruent.max_sets);
-  congruent.get("min_line_angle_deg", p.stocs.congruent.min_line_angle_deg);
-  congruent.rejectUnknownKeys();
-  stocs.get("max_fit_rms", p.stocs.max_fit_rms);
-  stocs.get("duplicate_distance", p.stocs.duplicate_distance);
-  stocs.get("min_normal_agreement", p.stocs.min_normal_agreement);
-  stocs.get("finished_per_base", p.stocs.finished_per_base);
-  MapReader lcp = stocs.map("lcp");
-  lcp.get("distance", p.stocs.lcp.distance);
-  lcp.get("normal_angle_deg", p.stocs.lcp.normal_angle_deg);
-  lcp.get("coarse_fraction", p.stocs.lcp.coarse_fraction);
-  lcp.get("coarse_ratio", p.stocs.lcp.coarse_ratio);
-  lcp.rejectUnknownKeys();
-  MapReader icp = stocs.map("icp");
-  icp.get("enabled", p.stocs.icp.enabled);
-  icp.get("iterations", p.stocs.icp.iterations);
-  icp.get("max_distance", p.stocs.icp.max_distance);
-  icp.get("normal_angle_deg", p.stocs.icp.normal_angle_deg);
-  icp.get("candidates", p.stocs.icp.candidates);
-  icp.get("screening_iterations", p.stocs.icp.screening_iterations);
-  icp.get("finalists", p.stocs.icp.finalists);
-  icp.rejectUnknownKeys();
-  MapReader free_space = stocs.map("free_space");
-  free_space.get("enabled", p.stocs.free_space.enabled);
-  free_space.get("margin", p.stocs.free_space.margin);
-  free_space.rejectUnknownKeys();
-  stocs.get("bases", p.stocs.bases);
-  stocs.get("base_draw_budget", p.stocs.base_draw_budget);
-  stocs.get("focused_bases", p.stocs.focused_bases);
-  stocs.get("consensus_bases", p.stocs.consensus_bases);
-  stocs.get("time_budget", p.stocs.time_budget);
-  stocs.get("seed", p.stocs.seed);
-  stocs.get("threads", p.stocs.threads);
-  stocs.get("instances", p.stocs.instances);
-  stocs.get("instance_separation", p.stocs.instance_separation);
-  stocs.rejectUnknownKeys();
-  reader.rejectUnknownKeys();
-  try {
-    p.validate();
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: estimation: {}", reader.file().string(), e.what()));
+  /// Reads every parameter of `schema` present in the file into `target`, checking its type,
+  /// its range and its choices, each error naming the file, the line and the key.
+  template <class S>
+  void read(const stocs::ParamSet<S>& schema, S& target) {
+    for (const auto& entry : schema.entries()) {
+      const std::string& key = entry.info.key;
+      const size_t dot = key.rfind('.');
+      MapReader& map = mapAt(dot == std::string::npos ? "" : key.substr(0, dot));
+      const std::string name = dot == std::string::npos ? key : key.substr(dot + 1);
+      const YAML::Node node = map.node(name);
+      if (!node) continue;
+      const stocs::ParamRef field = entry.field(target);
+      std::visit([&](auto ref) { assign(map, node, key, entry.info, ref); }, field);
+      if (auto problem = entry.info.problem(field)) map.fail(node, key, *problem);
+    }
   }
-}
+
+  /// Rejects the keys of every map below the root that no parameter named.
+  void rejectUnknownKeys() {
+    for (auto& [path, reader] : maps_) reader.rejectUnknownKeys();
+  }
+
+  /// The reader of the map at `path` ("input.sync"; "" is the root).
+  MapReader& mapAt(const std::string& path) {
+    if (path.empty()) return root_;
+    auto it = maps_.find(path);
+    if (it != maps_.end()) return it->second;
+    const size_t dot = path.rfind('.');
+    MapReader& parent = mapAt(dot == std::string::npos ? "" : path.substr(0, dot));
+    return maps_.emplace(path, parent.map(path.substr(dot + 1))).first->second;
+  }
+
+ private:
+  template <class T>
+  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
+                     const stocs::ParamInfo&, T* field) {
+    *field = map.convert<T>(node, key);
+  }
+  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
+                     const stocs::ParamInfo& info, const stocs::ChoiceRef& field) {
+    const std::string value = map.convert<std::string>(node, key);
+    if (std::find(info.choices.begin(), info.choices.end(), value) == info.choices.end()) {
+      map.fail(node, key,
+               fmt::format("'{}' is not one of {}", value, fmt::join(info.choices, ", ")));
+    }
+    field.set(value);
+  }
+
+  MapReader& root_;
+  std::map<std::string, MapReader> maps_;
+};
 
 }  // namespace
+
+const stocs::ParamSet<InputConfig>& InputConfig::schema() {
+  static const stocs::ParamSet<InputConfig> schema =
+      stocs::ParamSet<InputConfig>()
+          .choice(&InputConfig::depth, "source",
+                  {{"cloud", DepthSource::kCloud}, {"depth", DepthSource::kDepthImage}},
+                  "cloud: organized ~cloud; depth: ~depth + ~camera_info (REP 118)")
+          .choice(&InputConfig::probability, "probability",
+                  {{"per_object", ProbabilitySource::kPerObject},
+                   {"multichannel", ProbabilitySource::kMultichannel}},
+                  "per_object: ~probability/<name>; multichannel: one ~probability")
+          .add(&InputConfig::uint16_scale, "uint16_scale", "", stocs::ParamRange::aboveUpTo(0, 1e9),
+               "mono16 probability = value / uint16_scale")
+          .add(&InputConfig::boundary, "boundary",
+               "also wait for ~boundary (mono8, 255 interior) and use its regions")
+          .nest(&InputConfig::sync, "sync", SyncParams::schema());
+  return schema;
+}
+
+const stocs::ParamSet<OutputConfig>& OutputConfig::schema() {
+  static const stocs::ParamSet<OutputConfig> schema =
+      stocs::ParamSet<OutputConfig>()
+          .add(&OutputConfig::frame_prefix, "frame_prefix", "", std::nullopt,
+               "TF child frame = frame_prefix + object name")
+          .add(&OutputConfig::tf, "tf", "publish TF from the cloud's frame to each found object")
+          .add(&OutputConfig::markers, "markers", "publish ~markers")
+          .add(&OutputConfig::estimate_on_frames, "estimate_on_frames",
+               "false: estimate only when ~estimate is called");
+  return schema;
+}
+
+const stocs::ParamSet<NodeConfig>& NodeConfig::schema() {
+  static const stocs::ParamSet<NodeConfig> schema =
+      stocs::ParamSet<NodeConfig>()
+          .nest(&NodeConfig::input, "input", InputConfig::schema(), "Inputs")
+          .nest(&NodeConfig::output, "output", OutputConfig::schema(), "Outputs")
+          .add(&NodeConfig::model_cache_setting, "model_cache", "", std::nullopt,
+               "folder for prepared models; empty: $XDG_CACHE_HOME/stocs_ros; none: off")
+          .nest(&NodeConfig::estimation, "estimation", stocs::PipelineParams::schema());
+  return schema;
+}
 
 int NodeConfig::objectIndex(const std::string& name) const {
   for (size_t i = 0; i < objects.size(); ++i) {
@@ -373,25 +361,16 @@ NodeConfig loadNodeConfig(const fs::path& file) {
                                    file.string(), k, c.objects.back().name, c.objects.back().id));
     }
   }
-  readInput(reader.map("input"), c.input);
+  SchemaReader schema(reader);
+  schema.read(NodeConfig::schema(), c);
+  readChannels(schema.mapAt("input"), c.input);
+  schema.rejectUnknownKeys();
   checkChannels(c);
-
-  MapReader output = reader.map("output");
-  output.get("frame_prefix", c.output.frame_prefix);
-  output.get("tf", c.output.tf);
-  output.get("markers", c.output.markers);
-  output.get("estimate_on_frames", c.output.estimate_on_frames);
-  output.rejectUnknownKeys();
-
-  std::string cache;
-  reader.get("model_cache", cache);
-  if (cache.empty()) {
+  if (c.model_cache_setting.empty()) {
     c.model_cache = stocs::ModelCache::defaultDirectory();
-  } else if (cache != "none") {
-    c.model_cache = resolveResourcePath(cache, dir);
+  } else if (c.model_cache_setting != "none") {
+    c.model_cache = resolveResourcePath(c.model_cache_setting, dir);
   }
-
-  readEstimation(reader.map("estimation"), c.estimation);
   reader.rejectUnknownKeys();
   return c;
 }

@@ -5,7 +5,7 @@
 
 #include <numeric>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 

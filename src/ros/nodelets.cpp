@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/scene_publisher.h"
 #include "stocs_ros/stocs_node.h"
 

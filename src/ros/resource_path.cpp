@@ -5,7 +5,7 @@
 
 #include <cstdlib>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 namespace {

@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/cloud_conversion.h"
 
 namespace stocs_ros {

@@ -2,20 +2,24 @@
 
 #include <fmt/format.h>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 
+const stocs::ParamSet<SyncParams>& SyncParams::schema() {
+  static const stocs::ParamSet<SyncParams> schema =
+      stocs::ParamSet<SyncParams>()
+          .add(&SyncParams::tolerance, "tolerance", "s", stocs::ParamRange::closed(0, 10),
+               "between the reference (cloud or depth) stamp and the stamps matched to it")
+          .add(&SyncParams::queue_size, "queue_size", "", stocs::ParamRange::closed(1, 1000),
+               "messages kept per input while waiting for a match")
+          .add(&SyncParams::max_age, "max_age", "s", stocs::ParamRange::closed(0, 3600),
+               "behind the newest stamp before a message is dropped; 0: never");
+  return schema;
+}
+
 void SyncParams::validate() const {
-  if (!(tolerance >= 0 && tolerance <= 10)) {
-    throw stocs::InputError(fmt::format("tolerance {} s is outside [0, 10]", tolerance));
-  }
-  if (queue_size < 1 || queue_size > 1000) {
-    throw stocs::InputError(fmt::format("queue_size {} is outside [1, 1000]", queue_size));
-  }
-  if (!(max_age >= 0 && max_age <= 3600)) {
-    throw stocs::InputError(fmt::format("max_age {} s is outside [0, 3600]", max_age));
-  }
+  schema().validate(*this);
 }
 
 const char* toString(DropReason reason) {

@@ -6,7 +6,7 @@
 
 #include <boost/make_shared.hpp>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {

@@ -16,11 +16,11 @@
 #include "line_plot.h"
 #include "object_runs.h"
 #include "progress.h"
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/io/pcd_scene_dataset.h"
 #include "stocs/methods/pose_method.h"
-#include "stocs/pcd_scene_dataset.h"
-#include "stocs/probability_source.h"
+#include "stocs/sim/probability_source.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace fs = std::filesystem;
@@ -219,7 +219,7 @@ std::string commandLine(const CLI::App& cmd) {
 }
 
 void validate(const BenchOptions& o) {
-  o.params.validate();
+  validatePipelineOptions(o.params);
   for (const std::string& m : o.methods) makeMethod(m, o.method_options);
   for (const std::string& m : o.sweep_methods) {
     if (std::find(o.methods.begin(), o.methods.end(), m) == o.methods.end())

@@ -12,7 +12,7 @@
 #include <cstring>
 #include <thread>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 extern char** environ;
 

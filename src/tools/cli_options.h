@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "stocs/pipeline.h"
+#include "stocs/estimation/pipeline.h"
 
 namespace stocs::tools {
 
@@ -19,8 +19,12 @@ struct ModelOptions {
   ModelCache cache() const;
 };
 
-/// Adds the options of every estimation stage, writing into `params`.
+/// Adds an option for every estimation parameter (PipelineParams::schema()), writing into `params`.
 void addPipelineOptions(CLI::App& cmd, PipelineParams& params);
+
+/// Throws InputError naming the option ("--bases 0 is outside [1, 1000000]") of the first
+/// estimation parameter out of range.
+void validatePipelineOptions(const PipelineParams& params);
 
 /// Adds --split, --scenes and --objects: which images and objects of a dataset to use.
 void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,

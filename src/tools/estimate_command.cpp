@@ -12,13 +12,13 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "object_runs.h"
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
 #include "stocs/eval/metric_summary.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
 #include "stocs/methods/pose_method.h"
-#include "stocs/pose_metrics.h"
-#include "stocs/probability_source.h"
+#include "stocs/sim/probability_source.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {
@@ -63,7 +63,7 @@ NearestInstance nearestInstance(const std::vector<Eigen::Vector3f>& points_mm,
 }
 
 int runEstimate(const EstimateOptions& o) {
-  o.params.validate();
+  validatePipelineOptions(o.params);
   const std::unique_ptr<PoseMethod> method = makeMethod(o.method, o.method_options);
   const BopDataset dataset(o.dataset, o.split);
   const std::unique_ptr<ProbabilitySource> probabilities =

@@ -8,10 +8,10 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "eval_report.h"
-#include "stocs/bop_dataset.h"
-#include "stocs/error.h"
 #include "stocs/eval/dataset_evaluation.h"
-#include "stocs/probability_source.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/sim/probability_source.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "child_process.h"
 #include "report_table.h"
-#include "stocs/bop_dataset.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {

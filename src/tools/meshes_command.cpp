@@ -5,8 +5,8 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "stocs/bop_writer.h"
-#include "stocs/error.h"
+#include "stocs/sim/bop_writer.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {

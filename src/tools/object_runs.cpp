@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "report_table.h"
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 

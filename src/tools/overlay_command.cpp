@@ -8,9 +8,10 @@
 
 #include "commands.h"
 #include "pose_overlay.h"
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "stocs/depth_renderer.h"
+#include "stocs/sim/depth_renderer.h"
 
 namespace stocs::tools {
 

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/camera.h"
-#include "stocs/mesh.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/mesh.h"
 
 namespace stocs::tools {
 

@@ -5,7 +5,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {
@@ -17,7 +17,7 @@ struct PrepareOptions {
 };
 
 int runPrepare(const PrepareOptions& o) {
-  o.params.validate();
+  validatePipelineOptions(o.params);
   const ModelCache cache = o.model.cache();
   for (const std::string& file : o.models) {
     const auto start = std::chrono::steady_clock::now();

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 namespace stocs::tools {
 namespace {

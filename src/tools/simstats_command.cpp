@@ -9,11 +9,11 @@
 #include <set>
 
 #include "commands.h"
-#include "stocs/bop_dataset.h"
-#include "stocs/ground_truth_masks.h"
-#include "stocs/probability_source.h"
-#include "stocs/segmentation_metrics.h"
-#include "stocs/segmentation_simulator.h"
+#include "stocs/eval/segmentation_metrics.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/sim/ground_truth_masks.h"
+#include "stocs/sim/probability_source.h"
+#include "stocs/sim/segmentation_simulator.h"
 
 namespace stocs::tools {
 namespace {

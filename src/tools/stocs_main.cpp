@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"stocs: 6D object pose estimation with Stochastic Congruent Sets (BMVC 2018)"};

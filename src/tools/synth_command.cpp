@@ -3,8 +3,8 @@
 #include <fmt/ranges.h>
 
 #include "commands.h"
-#include "stocs/segmentation_simulator.h"
-#include "stocs/synthetic_dataset.h"
+#include "stocs/sim/segmentation_simulator.h"
+#include "stocs/sim/synthetic_dataset.h"
 
 namespace stocs::tools {
 namespace {

@@ -3,9 +3,9 @@
 #include <cv_bridge/cv_bridge.h>
 #include <tf2_eigen/tf2_eigen.h>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/mesh.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/mesh_io.h"
 #include "stocs_ros/cloud_conversion.h"
 #include "stocs_ros/stamp_synchronizer.h"
 

@@ -15,7 +15,7 @@
 #include <set>
 
 #include "ros_test_support.h"
-#include "stocs/bop_dataset.h"
+#include "stocs/io/bop_dataset.h"
 #include "stocs_ros/result_messages.h"
 #include "test_support.h"
 

@@ -5,8 +5,8 @@
 #include <limits>
 #include <random>
 
-#include "stocs/error.h"
 #include "stocs/eval/accuracy_curve.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

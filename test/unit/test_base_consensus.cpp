@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "stocs/base_consensus.h"
-#include "stocs/object_model.h"
+#include "stocs/estimation/base_consensus.h"
+#include "stocs/model/object_model.h"
 #include "test_support.h"
 
 namespace stocs {

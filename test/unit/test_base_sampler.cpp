@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stocs/base_sampler.h"
-#include "stocs/error.h"
+#include "stocs/estimation/base_sampler.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {
@@ -245,25 +245,6 @@ TEST_F(BaseSamplerTest, NoBaseWhenNoPairIsOnTheModel) {
   Rng rng(1);
   BaseSamplingScratch scratch;
   EXPECT_FALSE(sampler.sample(rng, scratch));
-}
-
-TEST(BaseSamplerParams, OutOfRangeValuesAreRejected) {
-  BaseSamplerParams p;
-  p.wide_angle_deg = 95;
-  EXPECT_THROW(p.validate(), InputError);
-  p = BaseSamplerParams{};
-  p.coplanarity = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = BaseSamplerParams{};
-  p.max_attempts = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = BaseSamplerParams{};
-  p.focus_exponent = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p.focus_exponent = BaseSamplerParams::kMaxFocusExponent + 1;
-  EXPECT_THROW(p.validate(), InputError);
-  p.focus_exponent = 1;
-  EXPECT_NO_THROW(p.validate());
 }
 
 }  // namespace

@@ -14,10 +14,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/bop_results.h"
 #include "stocs/methods/pose_method.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

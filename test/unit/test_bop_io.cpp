@@ -4,9 +4,9 @@
 #include <fstream>
 #include <opencv2/core.hpp>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -1,6 +1,6 @@
 // BoundaryRegions against cv::connectedComponents (4-connectivity), which defines the regions: the
 // same region number at every pixel, on hand-made shapes, random maps and the real boundary maps.
-#include "stocs/boundary_regions.h"
+#include "stocs/estimation/boundary_regions.h"
 
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/error.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -4,7 +4,7 @@
 #include <fstream>
 #include <string>
 
-#include "stocs/bop_results.h"
+#include "stocs/io/bop_results.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/ply_writer.h"
-#include "stocs/shape_meshes.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/sim/shape_meshes.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -3,7 +3,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/bop_results.h"
+#include "stocs/io/bop_results.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -5,10 +5,11 @@
 
 #include <set>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
-#include "stocs/pose_metrics.h"
-#include "stocs/surface_sampling.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/geometry/surface_sampling.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/io/mesh_io.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/error.h"
 #include "stocs/eval/dataset_evaluation.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

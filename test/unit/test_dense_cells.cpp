@@ -6,7 +6,7 @@
 #include <random>
 #include <vector>
 
-#include "stocs/dense_cells.h"
+#include "stocs/geometry/dense_cells.h"
 
 namespace stocs {
 namespace {

@@ -2,9 +2,9 @@
 // and on grazing surfaces, determinism.
 #include <gtest/gtest.h>
 
-#include "stocs/depth_noise.h"
-#include "stocs/depth_renderer.h"
-#include "stocs/error.h"
+#include "stocs/sim/depth_noise.h"
+#include "stocs/sim/depth_renderer.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

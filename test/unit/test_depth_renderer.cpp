@@ -1,9 +1,9 @@
 // The z-buffer rasteriser: depth, coverage, normals and occlusion against hand-computed values.
 #include <gtest/gtest.h>
 
-#include "stocs/depth_renderer.h"
-#include "stocs/error.h"
-#include "stocs/surface_sampling.h"
+#include "stocs/geometry/surface_sampling.h"
+#include "stocs/sim/depth_renderer.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -11,9 +11,9 @@
 #include <map>
 #include <sstream>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
-#include "stocs/mesh.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/io/mesh_io.h"
 #include "test_support.h"
 
 namespace stocs {

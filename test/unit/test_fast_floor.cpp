@@ -5,7 +5,7 @@
 #include <limits>
 #include <random>
 
-#include "stocs/fast_floor.h"
+#include "stocs/util/fast_floor.h"
 
 namespace stocs {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <limits>
 
-#include "stocs/error.h"
-#include "stocs/free_space_check.h"
+#include "stocs/estimation/free_space_check.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

@@ -2,10 +2,10 @@
 // correspondence is exact and only the step itself can go wrong.
 #include <gtest/gtest.h>
 
-#include "stocs/icp_refiner.h"
-#include "stocs/object_catalogue.h"
-#include "stocs/object_model.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/estimation/icp_refiner.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/model/object_model.h"
+#include "stocs/sim/object_catalogue.h"
 #include "test_support.h"
 
 namespace stocs {

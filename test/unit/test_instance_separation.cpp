@@ -1,8 +1,8 @@
 // Same-place test of two poses, used to suppress duplicate instances.
 #include <gtest/gtest.h>
 
-#include "stocs/instance_separation.h"
-#include "stocs/object_model.h"
+#include "stocs/estimation/instance_separation.h"
+#include "stocs/model/object_model.h"
 #include "test_support.h"
 
 namespace stocs {

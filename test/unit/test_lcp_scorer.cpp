@@ -6,8 +6,8 @@
 #include <numeric>
 #include <random>
 
-#include "stocs/error.h"
-#include "stocs/lcp_scorer.h"
+#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <fstream>
 
-#include "stocs/error.h"
-#include "stocs/mesh.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

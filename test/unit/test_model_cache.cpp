@@ -3,8 +3,8 @@
 
 #include <fstream>
 
-#include "stocs/error.h"
-#include "stocs/model_cache.h"
+#include "stocs/model/model_cache.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

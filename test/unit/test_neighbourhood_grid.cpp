@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <random>
 
-#include "stocs/neighbourhood_grid.h"
+#include "stocs/geometry/neighbourhood_grid.h"
 
 namespace stocs {
 namespace {

@@ -6,8 +6,9 @@
 #include <map>
 #include <sstream>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_writer.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/sim/bop_writer.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -5,10 +5,10 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "stocs/error.h"
-#include "stocs/normals.h"
-#include "stocs/object_model.h"
-#include "stocs/surface_sampling.h"
+#include "stocs/geometry/normals.h"
+#include "stocs/geometry/surface_sampling.h"
+#include "stocs/model/object_model.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -7,10 +7,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/error.h"
-#include "stocs/mesh.h"
-#include "stocs/pcd_scene_dataset.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/io/pcd_scene_dataset.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

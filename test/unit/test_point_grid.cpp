@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <random>
 
-#include "stocs/point_grid.h"
+#include "stocs/geometry/point_grid.h"
 
 namespace stocs {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "stocs/pose_metrics.h"
+#include "stocs/eval/pose_metrics.h"
 
 namespace stocs {
 namespace {

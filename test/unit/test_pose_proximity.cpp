@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "stocs/pose_proximity.h"
+#include "stocs/estimation/pose_proximity.h"
 
 namespace stocs {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <set>
 
-#include "stocs/ppf.h"
-#include "stocs/random.h"
+#include "stocs/model/ppf.h"
+#include "stocs/util/random.h"
 
 #include <Eigen/Geometry>
 

@@ -7,8 +7,8 @@
 #include <set>
 #include <sstream>
 
-#include "stocs/error.h"
-#include "stocs/ppf_hash_map.h"
+#include "stocs/model/ppf_hash_map.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {
@@ -171,18 +171,6 @@ TEST_F(PpfHashMapTest, MoreBinsThan32BitKeysAreRejected) {
   ObjectModel huge = model_;
   huge.diameter = 10.0f;
   EXPECT_THROW(PpfHashMap::build(huge, fine_params), InputError);
-}
-
-TEST(PpfParams, OutOfRangeValuesAreRejected) {
-  PpfParams p;
-  p.angle_step_deg = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = PpfParams{};
-  p.distance_step = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p = PpfParams{};
-  p.min_distance_ratio = 0.95f;
-  EXPECT_THROW(p.validate(), InputError);
 }
 
 }  // namespace

@@ -5,12 +5,13 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "stocs/error.h"
-#include "stocs/ground_truth_masks.h"
-#include "stocs/probability_source.h"
-#include "stocs/segmentation_metrics.h"
-#include "stocs/surface_sampling.h"
-#include "stocs/synthetic_dataset.h"
+#include "stocs/eval/segmentation_metrics.h"
+#include "stocs/geometry/surface_sampling.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/sim/ground_truth_masks.h"
+#include "stocs/sim/probability_source.h"
+#include "stocs/sim/synthetic_dataset.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

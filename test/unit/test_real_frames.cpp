@@ -5,9 +5,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/pipeline.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/estimation/pipeline.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/bop_dataset.h"
 #include "test_support.h"
 
 namespace stocs {

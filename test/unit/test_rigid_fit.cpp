@@ -3,8 +3,8 @@
 
 #include <Eigen/Geometry>
 
-#include "stocs/random.h"
-#include "stocs/rigid_fit.h"
+#include "stocs/geometry/rigid_fit.h"
+#include "stocs/util/random.h"
 
 namespace stocs {
 namespace {

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "stocs/error.h"
 #include "stocs/eval/rt_error.h"
 #include "stocs/eval/symmetries.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

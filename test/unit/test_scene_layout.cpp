@@ -3,8 +3,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "stocs/error.h"
-#include "stocs/scene_layout.h"
+#include "stocs/sim/scene_layout.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -4,10 +4,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "stocs/error.h"
-#include "stocs/segmentation_metrics.h"
-#include "stocs/segmentation_simulator.h"
-#include "stocs/synthetic_frame.h"
+#include "stocs/eval/segmentation_metrics.h"
+#include "stocs/sim/segmentation_simulator.h"
+#include "stocs/sim/synthetic_frame.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -10,11 +10,11 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "stocs/error.h"
-#include "stocs/normals.h"
-#include "stocs/organized_cloud.h"
-#include "stocs/probability_image.h"
-#include "stocs/soft_segment.h"
+#include "stocs/estimation/soft_segment.h"
+#include "stocs/geometry/normals.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/io/probability_image.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {

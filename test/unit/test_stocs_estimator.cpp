@@ -4,10 +4,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/error.h"
-#include "stocs/icp_refiner.h"
-#include "stocs/pipeline.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/pipeline.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {
@@ -394,67 +394,6 @@ TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
   for (size_t k = 1; k < r.estimate.instances.size(); ++k) {
     EXPECT_LE(r.estimate.instances[k].lcp.score, r.estimate.instances[k - 1].lcp.score);
   }
-}
-
-TEST(StocsParams, OutOfRangeValuesAreRejected) {
-  StocsParams p;
-  p.bases = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.time_budget = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.threads = -2;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.icp.iterations = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.icp.candidates = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.icp.screening_iterations = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.icp.finalists = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.lcp.coarse_fraction = 1;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.lcp.coarse_ratio = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.instances = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.min_normal_agreement = 5;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.finished_per_base = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.instance_separation = 0;
-  EXPECT_THROW(p.validate(), InputError);
-  p = StocsParams{};
-  p.consensus_bases = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p.consensus_bases = 1001;
-  EXPECT_THROW(p.validate(), InputError);
-  p.consensus_bases = 1000;
-  EXPECT_NO_THROW(p.validate());
-  p = StocsParams{};
-  p.focused_bases = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p.focused_bases = 0;
-  EXPECT_NO_THROW(p.validate());
-  p = StocsParams{};
-  p.base_draw_budget = -1;
-  EXPECT_THROW(p.validate(), InputError);
-  p.base_draw_budget = 1000001;
-  EXPECT_THROW(p.validate(), InputError);
-  p.base_draw_budget = 0;
-  EXPECT_NO_THROW(p.validate());
 }
 
 }  // namespace

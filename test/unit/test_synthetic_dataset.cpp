@@ -7,11 +7,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_writer.h"
-#include "stocs/depth_renderer.h"
-#include "stocs/error.h"
-#include "stocs/synthetic_dataset.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/sim/bop_writer.h"
+#include "stocs/sim/depth_renderer.h"
+#include "stocs/sim/synthetic_dataset.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {

@@ -12,10 +12,10 @@
 #include <tuple>
 #include <vector>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/bop_results.h"
 #include "stocs/eval/object_metrics.h"
-#include "stocs/probability_source.h"
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_results.h"
+#include "stocs/sim/probability_source.h"
 
 namespace stocs {
 

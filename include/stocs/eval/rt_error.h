@@ -11,7 +11,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "stocs/pose_metrics.h"
+#include "stocs/eval/pose_metrics.h"
 
 namespace stocs {
 

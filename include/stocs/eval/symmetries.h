@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "stocs/bop_dataset.h"
-#include "stocs/pose_metrics.h"
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/bop_dataset.h"
 
 namespace stocs {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "stocs/model_cache.h"
-#include "stocs/organized_cloud.h"
-#include "stocs/pipeline.h"
+#include "stocs/estimation/pipeline.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/model/model_cache.h"
 
 namespace cv {
 class Mat;

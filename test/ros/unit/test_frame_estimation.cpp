@@ -9,7 +9,7 @@
 #include <fstream>
 #include <limits>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/cloud_conversion.h"
 #include "stocs_ros/frame_estimation.h"

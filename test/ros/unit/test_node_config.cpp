@@ -6,7 +6,8 @@
 #include <cstdlib>
 #include <fstream>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
+#include "stocs/util/param_docs.h"
 #include "stocs_ros/node_config.h"
 #include "test_support.h"
 
@@ -43,68 +44,14 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   EXPECT_TRUE(c.objects[0].mesh_url.empty());
   EXPECT_TRUE(c.objects[0].symmetries.empty());
 
-  const InputConfig in;
-  EXPECT_EQ(c.input.depth, in.depth);
-  EXPECT_EQ(c.input.probability, in.probability);
-  EXPECT_EQ(c.input.uint16_scale, in.uint16_scale);
-  EXPECT_EQ(c.input.boundary, in.boundary);
-  EXPECT_EQ(c.input.sync.tolerance, in.sync.tolerance);
-  EXPECT_EQ(c.input.sync.queue_size, in.sync.queue_size);
-  EXPECT_EQ(c.input.sync.max_age, in.sync.max_age);
-  const OutputConfig out;
-  EXPECT_EQ(c.output.frame_prefix, out.frame_prefix);
-  EXPECT_EQ(c.output.tf, out.tf);
-  EXPECT_EQ(c.output.markers, out.markers);
-  EXPECT_EQ(c.output.estimate_on_frames, out.estimate_on_frames);
   EXPECT_EQ(c.model_cache, stocs::ModelCache::defaultDirectory());
-
-  const stocs::PipelineParams d;
-  const stocs::PipelineParams& p = c.estimation;
-  EXPECT_EQ(p.segment.min_probability, d.segment.min_probability);
-  EXPECT_EQ(p.segment.voxel_size, d.segment.voxel_size);
-  EXPECT_EQ(p.segment.samples_per_voxel, d.segment.samples_per_voxel);
-  EXPECT_EQ(p.segment.normals.radius, d.segment.normals.radius);
-  EXPECT_EQ(p.segment.normals.samples_per_axis, d.segment.normals.samples_per_axis);
-  EXPECT_EQ(p.segment.normals.min_neighbours, d.segment.normals.min_neighbours);
-  EXPECT_EQ(p.model.sampling.sampling_ratio, d.model.sampling.sampling_ratio);
-  EXPECT_EQ(p.model.sampling.normal_neighbours, d.model.sampling.normal_neighbours);
-  EXPECT_EQ(p.model.sampling.orientation_viewpoints, d.model.sampling.orientation_viewpoints);
-  EXPECT_EQ(p.model.ppf.distance_step, d.model.ppf.distance_step);
-  EXPECT_EQ(p.model.ppf.angle_step_deg, d.model.ppf.angle_step_deg);
-  EXPECT_EQ(p.model.ppf.min_distance_ratio, d.model.ppf.min_distance_ratio);
-  EXPECT_EQ(p.stocs.base.wide_angle_deg, d.stocs.base.wide_angle_deg);
-  EXPECT_EQ(p.stocs.base.coplanarity, d.stocs.base.coplanarity);
-  EXPECT_EQ(p.stocs.base.max_attempts, d.stocs.base.max_attempts);
-  EXPECT_EQ(p.stocs.base.focus_exponent, d.stocs.base.focus_exponent);
-  EXPECT_EQ(p.stocs.congruent.tolerance, d.stocs.congruent.tolerance);
-  EXPECT_EQ(p.stocs.congruent.max_sets, d.stocs.congruent.max_sets);
-  EXPECT_EQ(p.stocs.congruent.min_line_angle_deg, d.stocs.congruent.min_line_angle_deg);
-  EXPECT_EQ(p.stocs.max_fit_rms, d.stocs.max_fit_rms);
-  EXPECT_EQ(p.stocs.duplicate_distance, d.stocs.duplicate_distance);
-  EXPECT_EQ(p.stocs.min_normal_agreement, d.stocs.min_normal_agreement);
-  EXPECT_EQ(p.stocs.finished_per_base, d.stocs.finished_per_base);
-  EXPECT_EQ(p.stocs.consensus_bases, d.stocs.consensus_bases);
-  EXPECT_EQ(p.stocs.base_draw_budget, d.stocs.base_draw_budget);
-  EXPECT_EQ(p.stocs.focused_bases, d.stocs.focused_bases);
-  EXPECT_EQ(p.stocs.lcp.distance, d.stocs.lcp.distance);
-  EXPECT_EQ(p.stocs.lcp.normal_angle_deg, d.stocs.lcp.normal_angle_deg);
-  EXPECT_EQ(p.stocs.lcp.coarse_fraction, d.stocs.lcp.coarse_fraction);
-  EXPECT_EQ(p.stocs.lcp.coarse_ratio, d.stocs.lcp.coarse_ratio);
-  EXPECT_EQ(p.stocs.icp.candidates, d.stocs.icp.candidates);
-  EXPECT_EQ(p.stocs.icp.screening_iterations, d.stocs.icp.screening_iterations);
-  EXPECT_EQ(p.stocs.icp.finalists, d.stocs.icp.finalists);
-  EXPECT_EQ(p.stocs.free_space.enabled, d.stocs.free_space.enabled);
-  EXPECT_EQ(p.stocs.free_space.margin, d.stocs.free_space.margin);
-  EXPECT_EQ(p.stocs.icp.enabled, d.stocs.icp.enabled);
-  EXPECT_EQ(p.stocs.icp.iterations, d.stocs.icp.iterations);
-  EXPECT_EQ(p.stocs.icp.max_distance, d.stocs.icp.max_distance);
-  EXPECT_EQ(p.stocs.icp.normal_angle_deg, d.stocs.icp.normal_angle_deg);
-  EXPECT_EQ(p.stocs.bases, d.stocs.bases);
-  EXPECT_EQ(p.stocs.time_budget, d.stocs.time_budget);
-  EXPECT_EQ(p.stocs.seed, d.stocs.seed);
-  EXPECT_EQ(p.stocs.threads, d.stocs.threads);
-  EXPECT_EQ(p.stocs.instances, d.stocs.instances);
-  EXPECT_EQ(p.stocs.instance_separation, d.stocs.instance_separation);
+  // Every other key of the file holds its field's default.
+  const stocs::DescribedParams loaded = NodeConfig::schema().describe(c);
+  const stocs::DescribedParams defaults = NodeConfig::schema().describe(NodeConfig());
+  ASSERT_EQ(loaded.size(), defaults.size());
+  for (size_t i = 0; i < loaded.size(); ++i) {
+    EXPECT_EQ(loaded[i].second, defaults[i].second) << loaded[i].first.key;
+  }
 }
 
 TEST(NodeConfig, ValuesReachTheirFieldsAndPathsResolve) {
@@ -203,25 +150,28 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
       {box + "input: {sync: {tolerance: soon}}\n",
        "input.sync.tolerance: expected a number, got 'soon'"},
       {box + "estimation: {stocs: {bases: 2.5}}\n", "estimation.stocs.bases: expected an integer"},
-      {box + "estimation: {stocs: {bases: 0}}\n", "estimation: bases 0 is outside [1, 1000000]"},
-      {box + "estimation: {segment: {min_probability: 1.5}}\n", "probability threshold 1.5"},
+      {box + "estimation: {stocs: {bases: 0}}\n",
+       "node.yaml:4: estimation.stocs.bases: 0 is outside [1, 1000000]"},
+      {box + "estimation: {segment: {min_probability: 1.5}}\n",
+       "estimation.segment.min_probability: 1.5 is outside [0, 1)"},
       {box + "estimation: {segment: {samples_per_voxel: 0.5}}\n",
-       "samples per voxel 0.5 is neither 0"},
-      {box + "estimation: {stocs: {instances: 0}}\n", "instances 0 is outside [1, 100]"},
+       "estimation.segment.samples_per_voxel: 0.5 is outside 0 or [1, 100]"},
+      {box + "estimation: {stocs: {instances: 0}}\n",
+       "estimation.stocs.instances: 0 is outside [1, 100]"},
       {box + "estimation: {stocs: {min_normal_agreement: 5}}\n",
-       "minimum normal agreement 5 is outside [0, 4]"},
+       "estimation.stocs.min_normal_agreement: 5 is outside [0, 4]"},
       {box + "estimation: {stocs: {finished_per_base: 0}}\n",
-       "hypotheses finished per base 0 is outside [1, 100000]"},
+       "estimation.stocs.finished_per_base: 0 is outside [1, 100000]"},
       {box + "estimation: {stocs: {consensus_bases: -1}}\n",
-       "consensus bases -1 is outside [0, 1000]"},
+       "estimation.stocs.consensus_bases: -1 is outside [0, 1000]"},
       {box + "estimation: {stocs: {base_draw_budget: -1}}\n",
-       "base draw budget -1 is outside [0, 1000000]"},
+       "estimation.stocs.base_draw_budget: -1 is outside [0, 1000000]"},
       {box + "estimation: {stocs: {focused_bases: -2}}\n",
-       "focused bases -2 is outside [0, 1000000]"},
+       "estimation.stocs.focused_bases: -2 is outside [0, 1000000]"},
       {box + "estimation: {stocs: {base: {focus_exponent: 0}}}\n",
-       "base focus exponent 0 is outside [1, 16]"},
-      {box + "input: {sync: {queue_size: 0}}\n", "input.sync: queue_size 0 is outside"},
-      {box + "input: {source: laser}\n", "input.source 'laser' must be 'cloud' or 'depth'"},
+       "estimation.stocs.base.focus_exponent: 0 is outside [1, 16]"},
+      {box + "input: {sync: {queue_size: 0}}\n", "input.sync.queue_size: 0 is outside [1, 1000]"},
+      {box + "input: {source: laser}\n", "input.source: 'laser' is not one of cloud, depth"},
       {box + "input: {probability: multichannel, channels: [box, cup]}\n",
        "input.channels names 'cup', which is not a configured object (box)"},
       {box + "input: {probability: multichannel, channels: [\"-\"]}\n",

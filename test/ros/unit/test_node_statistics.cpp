@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "stocs/error.h"
+#include "stocs/util/error.h"
 #include "stocs_ros/node_statistics.h"
 
 namespace stocs_ros {

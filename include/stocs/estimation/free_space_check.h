@@ -1,0 +1,48 @@
+#pragma once
+// Free-space check of a pose hypothesis: the share of the model's camera-facing surface samples
+// that the pose puts in front of what the sensor measured, i.e. in space the sensor sees through.
+// StoCS's objective (LCP) only rewards segment points a pose explains and never penalises model
+// surface where there is demonstrably nothing, so two poses that explain the segment alike (a
+// mug with its handle turned into the open, a box slid off its face) score the same; this check
+// tells them apart. It needs the organized cloud, not just the segment.
+
+#include <Eigen/Geometry>
+
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/model/object_model.h"
+#include "stocs/util/param_set.h"
+
+namespace stocs {
+
+struct FreeSpaceParams {
+  /// Rank the refined candidates by their objective times the share of their camera-facing
+  /// surface that is not in free space (see StocsEstimator::estimate).
+  bool enabled = true;
+  /// A model sample is in free space when the measured surface at its pixel lies more than this
+  /// far behind it (metres): depth noise and model error stay below it.
+  float margin = 0.01f;
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<FreeSpaceParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+class FreeSpaceCheck {
+ public:
+  /// Keeps references: `cloud` and `camera` (its intrinsics) must outlive the check.
+  FreeSpaceCheck(const OrganizedCloud& cloud, const CameraIntrinsics& camera,
+                 const FreeSpaceParams& params);
+
+  /// Of the model samples that face the camera at `pose` (model to camera) and project onto a
+  /// pixel with a measurement, the fraction in free space; 0 when none qualifies.
+  float violation(const ObjectModel& model, const Eigen::Isometry3f& pose) const;
+
+ private:
+  const OrganizedCloud& cloud_;
+  const CameraIntrinsics& camera_;
+  FreeSpaceParams params_;
+};
+
+}  // namespace stocs

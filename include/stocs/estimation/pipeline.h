@@ -1,0 +1,46 @@
+#pragma once
+// One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
+// the benchmark and the ROS node so all of them run exactly the same estimation.
+
+#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stocs_estimator.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/model/model_cache.h"
+#include "stocs/util/param_set.h"
+
+namespace cv {
+class Mat;
+}
+
+namespace stocs {
+
+/// Every parameter of the estimation, grouped by stage.
+struct PipelineParams {
+  SoftSegmentParams segment;
+  ModelPreparationParams model;
+  StocsParams stocs;
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<PipelineParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+struct ObjectEstimate {
+  size_t segment_points = 0;
+  PoseEstimate estimate;
+  double seconds = 0;  ///< segment building plus estimation
+};
+
+/// Segments the cloud with `probability` (CV_32FC1, see toProbabilityImage), splits it into
+/// instance regions when a boundary map is given (see labelRegions), and runs StoCS. `camera`, the
+/// cloud's intrinsics for the free-space check, is recovered from the cloud when null (a caller
+/// estimating several objects of a frame passes it once known). Throws InputError on size or type
+/// mismatches.
+ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
+                              const cv::Mat& probability, const PreparedModel& model,
+                              const PipelineParams& params, const cv::Mat* boundary_map = nullptr,
+                              const CameraIntrinsics* camera = nullptr);
+
+}  // namespace stocs

@@ -1,0 +1,169 @@
+#pragma once
+// StoCS (paper Algorithm 1) as a pipeline of named stages: BaseSampler -> CongruentSetMatcher ->
+// fitRigid -> LcpScorer, then optional point-to-plane refinement. The anytime loop stops after a
+// number of bases or a time budget.
+//
+// Determinism: base b draws from its own random stream streamSeed(seed, b), and ties between equal
+// scores go to the lower (base, set) index, so with a base limit and no time budget the result is
+// the same for every thread count. A time budget makes the number of bases depend on the machine;
+// the consensus stop does not (it is decided between whole blocks of bases, on exact scores).
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <optional>
+#include <vector>
+
+#include "stocs/estimation/base_sampler.h"
+#include "stocs/estimation/congruent_set_matcher.h"
+#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/pose_proximity.h"
+#include "stocs/estimation/soft_segment.h"
+#include "stocs/model/model_cache.h"
+#include "stocs/util/param_set.h"
+
+namespace stocs {
+
+class BaseConsensus;
+class EarlyRefinements;
+struct BaseOutcome;
+struct RefinementContext;
+
+struct StocsParams {
+  BaseSamplerParams base;
+  CongruentSetParams congruent;
+  float max_fit_rms = 0.008f;  ///< metres: congruent sets whose rigid fit is worse are dropped
+  /// Metres: a hypothesis that moves no model point farther than this from a hypothesis already
+  /// scored for the same base is a near-duplicate and is not scored (0 scores every one).
+  float duplicate_distance = 0.0025f;
+  /// A hypothesis is scored only when at least this many of the base's four points have the
+  /// normal of their model point within delta_n under it (0 scores every one). Flat and
+  /// symmetric faces give many fits that turn the model inside out (every normal reversed); they
+  /// cannot score, and on the dove they are 47% of all fits. One agreeing point suffices to keep
+  /// every fit that is not turned over.
+  int min_normal_agreement = 1;
+  /// Of a base's hypotheses, only this many, those with the best objective over the first
+  /// LcpParams::coarse_fraction of the model (their head, an unbiased subsample), are scored in
+  /// full; the base's best is the best of them. Planar and symmetric bases give dozens of
+  /// near-equal sliding fits, which otherwise survive the coarse checks for most of the model.
+  /// Accuracy before and after: BENCHMARKS.md.
+  int finished_per_base = 4;
+  LcpParams lcp;
+  IcpParams icp;
+  FreeSpaceParams free_space;
+  int bases = 100;  ///< bases per object (at most, with consensus_bases)
+  /// Base draws per object when fewer bases are asked for: a base that gives nothing to verify
+  /// (no congruent set on the model, or no set whose fit passes) is drawn again, up to
+  /// max(1, base_draw_budget / bases) draws in all. On a cluttered segment most draws straddle
+  /// other surfaces (60-70% of the cat's on its network map), so a few bases would otherwise mean
+  /// a few verified ones; with `bases` at or above the budget every base is drawn once, as in
+  /// the paper. Accuracy and time at 5-20 bases: BENCHMARKS.md, "Drawing failed bases again".
+  int base_draw_budget = 100;
+  /// The first this many bases of an object (one consensus block) draw their points by
+  /// pi_k^focus_exponent (BaseWeighting::kFocused), the others by pi_k as the paper does. On a
+  /// network's graded map focused bases lie on the object more often, so few bases suffice (the
+  /// cat of lmo-cat on its network map: found with 2 bases in 32 of 40 seeds instead of 16). The
+  /// later bases keep the paper's spread over the segment, which matters on flat simulated maps
+  /// (generated scenes at 100 bases, seeds 0-4: 93.7% found with every base focused, 94.5% with
+  /// the first 10, 95.1% with none). BENCHMARKS.md, "Focused first bases".
+  int focused_bases = 10;
+  /// Adaptive stop (BaseConsensus; 0: always run `bases`, as the paper does): the bases run in
+  /// blocks of kConsensusBlock, and after each block the loop ends once this many best bases so
+  /// far all put the object in the same place, up to its symmetries (ADD-S below
+  /// instance_separation of the diameter) and, given a free-space check, the best one keeps its
+  /// surface out of free space. For a single instance only: with instances > 1 every base runs,
+  /// since the next instance may come from any of them. On the evaluation sets it found as many
+  /// objects as 100 bases with half to a third of the hypotheses on objects in plain view
+  /// (BENCHMARKS.md, "Consensus stop").
+  int consensus_bases = 8;
+  static constexpr int kConsensusBlock = 10;
+  /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.
+  int instances = 1;
+  /// Two poses are one instance when their ADD-S distance is below this fraction of the diameter
+  /// (the success threshold of the evaluation, so symmetric look-alikes merge).
+  float instance_separation = 0.1f;
+  double time_budget = 0;  ///< seconds per object; 0: no limit
+  uint64_t seed = 0;
+  int threads = 0;  ///< 0: all cores
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<StocsParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+/// Seconds spent in each stage, summed over threads (the paper's Table 1c breakdown).
+struct StageSeconds {
+  double sampling = 0;
+  double matching = 0;
+  double verification = 0;  ///< rigid fits and scoring
+  double refinement = 0;
+};
+
+/// One distinct pose of the object.
+struct InstancePose {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
+  LcpDetail lcp;                                           ///< objective of the pose
+  bool refined = false;  ///< ICP moved the pose and did not lower the objective
+  int region = -1;       ///< instance region the pose was found in (-1: no regions)
+};
+
+struct PoseEstimate {
+  bool found = false;
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
+  LcpDetail lcp;                                           ///< objective of the returned pose
+  bool refined = false;  ///< ICP moved the pose and did not lower the objective
+  int region = -1;       ///< instance region the pose was found in (-1: no regions)
+  /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
+  /// above.
+  std::vector<InstancePose> instances;
+  int bases_tried = 0;         ///< bases started within the budget and before consensus
+  int bases_sampled = 0;       ///< of those, bases actually drawn
+  int base_draws = 0;          ///< draws in all, with those of bases drawn again (base_draw_budget)
+  int bases_with_sets = 0;     ///< of those, bases with at least one congruent set
+  long congruent_sets = 0;     ///< sets verified (after the per-base cap)
+  long hypotheses = 0;         ///< rigid fits that passed the RMS check and were scored
+  long duplicates = 0;         ///< rigid fits skipped as near-duplicates of a scored one
+  long normal_mismatches = 0;  ///< rigid fits skipped by StocsParams::min_normal_agreement
+  long finished = 0;   ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
+  long icp_steps = 0;  ///< ICP steps taken by all refined candidates
+  StageSeconds stages;
+  double seconds = 0;  ///< wall time of estimate()
+};
+
+class StocsEstimator {
+ public:
+  StocsEstimator(const PreparedModel& model, const StocsParams& params);
+
+  /// With `free_space` (the frame's organized cloud), the refined candidates compete by their
+  /// objective times (1 - FreeSpaceCheck::violation): of poses that explain the segment alike, the
+  /// one that puts no surface where the sensor sees through wins. Reported scores stay the
+  /// objective's.
+  PoseEstimate estimate(const SoftSegment& segment,
+                        const FreeSpaceCheck* free_space = nullptr) const;
+
+  const StocsParams& params() const { return params_; }
+
+ private:
+  /// Candidates for refinement: the best bases' poses.
+  size_t refinedBases() const;
+  /// Base scores each thread keeps for its pruning bound (BaseStages::keep).
+  size_t keptScores() const;
+  /// The consensus stop for `outcomes`, or none (StocsParams::consensus_bases).
+  std::optional<BaseConsensus> consensus(const FreeSpaceCheck* free_space,
+                                         const std::vector<BaseOutcome>& outcomes) const;
+  /// The anytime loop over the bases on `threads` threads (the base loop of Algorithm 1), with
+  /// early refinement of finished bases; every base's outcome, cleared past a consensus stop.
+  std::vector<BaseOutcome> runBases(const SoftSegment& segment, const LcpScorer& scorer,
+                                    const FreeSpaceCheck* free_space,
+                                    const RefinementContext& refinement, EarlyRefinements& early,
+                                    int threads, std::chrono::steady_clock::time_point start) const;
+
+  const PreparedModel& model_;
+  StocsParams params_;
+  CongruentSetMatcher matcher_;
+  PoseProximity proximity_;
+};
+
+}  // namespace stocs

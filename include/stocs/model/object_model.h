@@ -1,0 +1,45 @@
+#pragma once
+// An object model ready for matching: evenly spaced surface samples with outward unit normals.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "stocs/geometry/mesh.h"
+#include "stocs/util/param_set.h"
+
+namespace stocs {
+
+struct ModelSamplingParams {
+  /// Poisson-disc radius of the samples as a fraction of the object diameter. 0.04 gives about
+  /// 5 mm on a 12 cm object, the paper's PPF distance step.
+  float sampling_ratio = 0.04f;
+  /// Neighbours for PCA normals of point-only models.
+  int normal_neighbours = 16;
+  /// Viewpoints for outward orientation of point-only models.
+  int orientation_viewpoints = 96;
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<ModelSamplingParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+struct ObjectModel {
+  /// Metres, in the model frame, in random order: any prefix is an unbiased subsample (the
+  /// coarse-to-fine verification relies on this).
+  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3f> normals;  ///< unit, outward
+  float diameter = 0;                    ///< of the input surface, metres
+  float sampling_radius = 0;             ///< Poisson-disc radius used, metres
+
+  size_t size() const { return points.size(); }
+};
+
+/// At most this many samples, so that sample indices fit in 16 bits in the PPF map.
+constexpr size_t kMaxModelSamples = 65535;
+
+/// Samples a mesh's surface (area-weighted, then Poisson-disc) with face normals, or thins a point
+/// model (Poisson-disc) after estimating and orienting its normals. Deterministic.
+ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params);
+
+}  // namespace stocs

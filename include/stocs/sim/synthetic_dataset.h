@@ -1,0 +1,49 @@
+#pragma once
+// Generated BOP datasets (`stocs synth`): cluttered tabletop scenes of the project's objects (or
+// of any BOP models folder) with distractors, sensor-like depth, a shaded RGB image, visible masks,
+// visibility statistics and the segmentation simulator's probability maps in `prob/`, in the same
+// layout as the real datasets, so every tool runs on them unchanged.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "stocs/geometry/camera.h"
+#include "stocs/sim/depth_noise.h"
+#include "stocs/sim/scene_layout.h"
+#include "stocs/sim/synthetic_frame.h"
+
+namespace stocs {
+
+struct SyntheticDatasetParams {
+  int scenes = 1;            ///< arrangements, test/{scene:06d}
+  int images_per_scene = 1;  ///< views of each arrangement
+  SceneLayoutParams layout;
+  CameraIntrinsics camera = defaultSynthCamera();
+  DepthNoiseParams depth_noise;  ///< the sensor model at level 1
+  float depth_noise_level = 1;   ///< 0: exact depth
+  std::string segmentation_preset = "mild";
+  double depth_scale = 0.1;  ///< mm per depth unit: 0.1 reaches 6.5 m
+  uint64_t seed = 0;
+
+  /// Throws InputError naming the first value out of range (and an unknown preset).
+  void validate() const;
+};
+
+/// What was generated in one image.
+struct SyntheticImageReport {
+  int scene_id = 0, im_id = 0;
+  int objects = 0;     ///< ground-truth instances
+  double seconds = 0;  ///< generating and writing the image
+};
+
+/// Writes the dataset to `root`, which must not exist or be empty. Models come from `models_dir`
+/// (its obj_*.ply and models_info.json are copied) or, when it is empty, from the object catalogue.
+/// `progress` is called after each image. Deterministic for a seed: the same files every time.
+/// Throws InputError naming the problem.
+void writeSyntheticDataset(const std::filesystem::path& root, const SyntheticDatasetParams& params,
+                           const std::filesystem::path& models_dir = {},
+                           const std::function<void(const SyntheticImageReport&)>& progress = {});
+
+}  // namespace stocs

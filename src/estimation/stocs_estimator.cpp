@@ -1,0 +1,258 @@
+#include "stocs/estimation/stocs_estimator.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <optional>
+#include <vector>
+
+#include "base_scheduler.h"
+#include "base_verification.h"
+#include "candidate_refinement.h"
+#include "stocs/estimation/base_consensus.h"
+
+namespace stocs {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// The consensus stop's free-space limit: the best base's pose may put at most this share of its
+/// camera-facing surface where the sensor sees through. Of the wrong poses agreement alone stopped
+/// on, slid boxes and turned-over blocks had 19-51% there (refined); objects whose best raw pose
+/// exceeds the limit just run every base. The unrefined pose is judged: judged after ICP, wrong
+/// poses passed more often.
+constexpr float kConsensusFreeSpace = 0.05f;
+
+/// The scorer and the ICP refiner of a segment. Without instance regions each builds a
+/// neighbourhood grid over the whole segment (milliseconds on large segments, before any base can
+/// be verified), and they are independent, so they are built side by side; with regions the grids
+/// are built on first use (RegionGrids).
+struct SegmentIndexes {
+  std::optional<LcpScorer> scorer;
+  std::optional<IcpRefiner> icp;  // empty when ICP is off
+};
+
+/// Fills `out` in place: the scorer and the refiner hold once_flags and cannot move.
+void buildIndexes(const SoftSegment& segment, const StocsParams& params, int threads,
+                  SegmentIndexes& out) {
+  std::exception_ptr error;  // an exception must not leave an OpenMP region
+  auto guarded = [&](auto&& build) {
+    try {
+      build();
+    } catch (...) {
+#pragma omp critical(stocs_build_indexes)
+      error = std::current_exception();
+    }
+  };
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+  {
+#pragma omp section
+    guarded([&] { out.scorer.emplace(segment, params.lcp); });
+#pragma omp section
+    guarded([&] {
+      if (params.icp.enabled) out.icp.emplace(segment, params.icp);
+    });
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+/// Adds the counters and stage times of every base to `result`, and returns the bases' best
+/// hypotheses, highest score first (ties to the lower base index).
+std::vector<Hypothesis> rankBases(const std::vector<BaseOutcome>& outcomes, PoseEstimate& result) {
+  std::vector<Hypothesis> ranked;
+  for (size_t b = 0; b < outcomes.size(); ++b) {
+    const BaseOutcome& out = outcomes[b];
+    result.bases_tried += out.tried;
+    result.bases_sampled += out.sampled;
+    result.base_draws += out.draws;
+    result.bases_with_sets += out.sets > 0;
+    result.congruent_sets += out.sets;
+    result.hypotheses += out.hypotheses;
+    result.duplicates += out.duplicates;
+    result.normal_mismatches += out.normal_mismatches;
+    result.finished += out.finished;
+    result.stages.sampling += out.stages.sampling;
+    result.stages.matching += out.stages.matching;
+    result.stages.verification += out.stages.verification;
+    result.stages.refinement += out.stages.refinement;  // begun early
+    if (out.score > 0) ranked.push_back({out.pose, out.score, out.region, static_cast<int>(b)});
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), higherScore);
+  return ranked;
+}
+
+}  // namespace
+
+const ParamSet<StocsParams>& StocsParams::schema() {
+  static const ParamSet<StocsParams> schema =
+      ParamSet<StocsParams>()
+          .nest(&StocsParams::base, "base", BaseSamplerParams::schema())
+          .nest(&StocsParams::congruent, "congruent", CongruentSetParams::schema())
+          .add(&StocsParams::max_fit_rms, "max_fit_rms", "m", ParamRange::aboveUpTo(0, 0.1),
+               "congruent sets whose rigid fit is worse are dropped")
+          .flag("--fit-rms")
+          .add(&StocsParams::duplicate_distance, "duplicate_distance", "m",
+               ParamRange::closed(0, 0.1),
+               "hypotheses of one base this close to a scored one are skipped")
+          .add(&StocsParams::min_normal_agreement, "min_normal_agreement", "",
+               ParamRange::closed(0, 4),
+               "base points whose normal must agree (delta_n) for a fit to be scored")
+          .flag("--min-normal-agreement")
+          .add(&StocsParams::finished_per_base, "finished_per_base", "",
+               ParamRange::closed(1, 100000),
+               "hypotheses of a base scored in full: those best on the first coarse share")
+          .flag("--finished-per-base")
+          .nest(&StocsParams::lcp, "lcp", LcpParams::schema())
+          .nest(&StocsParams::icp, "icp", IcpParams::schema())
+          .nest(&StocsParams::free_space, "free_space", FreeSpaceParams::schema())
+          .add(&StocsParams::bases, "bases", "", ParamRange::closed(1, 1000000),
+               "bases per object (at most, with consensus_bases)")
+          .flag("--bases")
+          .add(&StocsParams::base_draw_budget, "base_draw_budget", "",
+               ParamRange::closed(0, 1000000),
+               "a base with nothing to verify is drawn again, up to budget / bases draws")
+          .flag("--draw-budget")
+          .add(&StocsParams::focused_bases, "focused_bases", "", ParamRange::closed(0, 1000000),
+               "the first bases draw by pi_k^focus_exponent, the rest by pi_k; 0: never")
+          .flag("--focused-bases")
+          .add(&StocsParams::consensus_bases, "consensus_bases", "", ParamRange::closed(0, 1000),
+               "stop between blocks of 10 bases once this many best bases agree; 0: never")
+          .flag("--consensus")
+          .add(&StocsParams::time_budget, "time_budget", "s", ParamRange::closed(0, 3600),
+               "per object; 0: no limit (a budget makes results machine-dependent)")
+          .flag("--time-budget")
+          .add(&StocsParams::seed, "seed", "", std::nullopt, "random seed")
+          .flag("--seed")
+          .add(&StocsParams::threads, "threads", "", ParamRange::closed(0, 256),
+               "threads per object; 0: all cores (results do not depend on it)")
+          .flag("--threads")
+          .add(&StocsParams::instances, "instances", "", ParamRange::closed(1, 100),
+               "poses per object (a bin of identical objects): frames <object>_<k>")
+          .flag("--instances")
+          .add(&StocsParams::instance_separation, "instance_separation", "",
+               ParamRange::aboveUpTo(0, 1),
+               "two poses are one instance below this ADD-S, fraction of the diameter")
+          .flag("--instance-separation");
+  return schema;
+}
+
+void StocsParams::validate() const {
+  schema().validate(*this);
+}
+
+StocsEstimator::StocsEstimator(const PreparedModel& model, const StocsParams& params)
+    : model_(model),
+      params_((params.validate(), params)),
+      matcher_(model, params.congruent),
+      proximity_(model.model) {}
+
+size_t StocsEstimator::refinedBases() const {
+  return params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
+}
+
+std::optional<BaseConsensus> StocsEstimator::consensus(
+    const FreeSpaceCheck* free_space, const std::vector<BaseOutcome>& outcomes) const {
+  if (params_.instances > 1 || params_.consensus_bases == 0) return std::nullopt;
+  // With a free-space check, agreement must be on a pose that keeps its surface out of free space.
+  BaseConsensus::Accept clear;
+  if (free_space) {
+    clear = [free_space, &outcomes, this](int b) {
+      return free_space->violation(model_.model, outcomes[b].pose) <= kConsensusFreeSpace;
+    };
+  }
+  return std::make_optional<BaseConsensus>(model_.model,
+                                           params_.instance_separation * model_.model.diameter,
+                                           params_.consensus_bases, std::move(clear));
+}
+
+size_t StocsEstimator::keptScores() const {
+  // The K best bases go on to refinement, so a hypothesis matters when it can still beat its own
+  // base's best and the K-th best base score seen so far. Several instances need every base's
+  // best, as the next instance may come from any base; the consensus stop needs exact scores for
+  // the bases it compares.
+  if (params_.instances > 1) return static_cast<size_t>(params_.bases);
+  if (params_.consensus_bases > 0) {
+    return std::max(refinedBases(), static_cast<size_t>(params_.consensus_bases));
+  }
+  return refinedBases();
+}
+
+std::vector<BaseOutcome> StocsEstimator::runBases(const SoftSegment& segment,
+                                                  const LcpScorer& scorer,
+                                                  const FreeSpaceCheck* free_space,
+                                                  const RefinementContext& refinement,
+                                                  EarlyRefinements& early, int threads,
+                                                  Clock::time_point start) const {
+  const BaseSampler sampler(segment, model_.ppf_map, params_.base);
+  BaseStages stages{segment,    sampler, matcher_,     scorer,      model_.model,
+                    proximity_, params_, keptScores(), std::nullopt};
+  if (params_.time_budget > 0) {
+    stages.deadline = start + std::chrono::duration_cast<Clock::duration>(
+                                  std::chrono::duration<double>(params_.time_budget));
+  }
+  std::vector<BaseOutcome> outcomes(static_cast<size_t>(params_.bases));
+  std::optional<BaseConsensus> stop = consensus(free_space, outcomes);
+  BaseDispenser dispenser(params_.bases, stop ? &*stop : nullptr, outcomes);
+#pragma omp parallel num_threads(threads)
+  {
+    BaseVerifier verifier(stages);
+    for (int b; (b = dispenser.next()) >= 0;) {
+      verifier.run(b, outcomes[static_cast<size_t>(b)]);
+      dispenser.finished(b);
+      early.finished(b);
+    }
+    early.work(outcomes, refinement);
+  }
+  dispenser.dropSpeculative();
+  return outcomes;
+}
+
+PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
+                                      const FreeSpaceCheck* free_space) const {
+  const Clock::time_point start = Clock::now();
+  PoseEstimate result;
+  if (segment.size() < 4) {
+    result.seconds = secondsSince(start);
+    return result;
+  }
+  const int threads = params_.threads > 0 ? params_.threads : omp_get_max_threads();
+  SegmentIndexes indexes;
+  buildIndexes(segment, params_, threads, indexes);
+  const IcpRefiner* icp = indexes.icp ? &*indexes.icp : nullptr;
+  const RefinementContext refinement{model_.model, icp, *indexes.scorer, free_space};
+  EarlyRefinements early(
+      params_.bases,
+      icp && params_.instances == 1 && static_cast<size_t>(params_.bases) <= refinedBases(),
+      icp ? firstSteps(icp->params(), static_cast<size_t>(params_.bases)) : 0);
+
+  // Algorithm 1: every base drawn, matched, fitted and verified; each keeps its best hypothesis.
+  const std::vector<BaseOutcome> outcomes =
+      runBases(segment, *indexes.scorer, free_space, refinement, early, threads, start);
+  const std::vector<Hypothesis> ranked = rankBases(outcomes, result);
+  if (ranked.empty()) {
+    result.seconds = secondsSince(start);
+    return result;
+  }
+  // The best bases refined; the best refined pose (and further distinct instances) returned.
+  const Clock::time_point t = Clock::now();
+  result.instances =
+      selectInstances(ranked, refinedBases(), static_cast<size_t>(params_.instances), refinement,
+                      params_.instance_separation, early.begun(), threads, result.icp_steps);
+  if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
+  result.found = true;
+  const InstancePose& best = result.instances.front();
+  result.pose = best.pose;
+  result.lcp = best.lcp;
+  result.refined = best.refined;
+  result.region = best.region;
+  result.seconds = secondsSince(start);
+  return result;
+}
+
+}  // namespace stocs

@@ -1,0 +1,81 @@
+#include "stocs_ros/config_reference.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "stocs/util/param_docs.h"
+#include "stocs_ros/node_config.h"
+
+namespace stocs_ros {
+namespace {
+
+constexpr char kYamlHead[] =
+    R"(# stocs_ros node configuration: every key with its default value. Generated from the parameter
+# schemas by scripts/update_config_reference.sh (docs/parameters.md has the same keys as a table);
+# edit the schemas, not this file. Paths may be absolute, relative to this file,
+# package://PKG/PATH, and may use $(env VAR) as in roslaunch.
+
+# The objects to estimate. Each needs a name (topic and TF name: letters, digits, underscores) and a
+# model; the example is object 6 (cat) of the real LM-O frame in ../shared/datasets.
+objects:
+  - name: cat
+    id: 6                      # numeric id in ~objects (default: position in this list + 1)
+    model: $(env STOCS_DATASETS)/lmo-cat/models/obj_000006.ply
+    unit_scale: 0.001          # model units to metres (BOP models are in mm)
+    mesh: ""                   # rviz mesh (package://, file path); empty: markers show model samples
+    # mesh_scale: 0.001        # mesh units to metres (default: unit_scale)
+    symmetries:                # as in BOP models_info.json, in model units
+      discrete: []             # row-major 4x4 transforms, identity not listed
+      continuous: []           # [{axis: [0, 0, 1], offset: [0, 0, 0]}]
+
+)";
+
+constexpr char kMarkdownHead[] = R"(# Parameters
+
+Every key of the node's configuration file, with its default, unit, allowed values and meaning.
+Generated from the parameter schemas by `scripts/update_config_reference.sh`, like
+[`config/default.yaml`](../config/default.yaml), which lists the same keys with their defaults.
+The estimation keys are also options of `stocs estimate`, `stocs bench` and `stocs prepare`.
+
+## Objects
+
+`objects` is a list; each entry has:
+
+| key | default | meaning |
+|---|---|---|
+| `name` | required | topic and TF name: a letter, then letters, digits and underscores |
+| `id` | position in the list + 1 | numeric id in `~objects` (the BOP `obj_id` for BOP models) |
+| `model` | required | model file (PLY, PCD): absolute, relative to the configuration file, `package://PKG/PATH`, with `$(env VAR)` |
+| `unit_scale` | `0.001` | model units to metres (BOP models are in mm) |
+| `mesh` | `""` | rviz mesh resource for the markers (empty: model points) |
+| `mesh_scale` | `unit_scale` | mesh units to metres |
+| `symmetries` | none | `discrete` (4x4 row-major) and `continuous` (`axis`, `offset`), as in BOP `models_info.json`, model units; keeps reported poses continuous across frames |
+
+`input.channels` (with `input.probability: multichannel`) lists the object name of each channel of
+`~probability` in order, `-` for a channel to ignore.
+
+)";
+
+}  // namespace
+
+std::string defaultConfigYaml() {
+  return kYamlHead + stocs::paramsYaml(NodeConfig::schema().describe(NodeConfig()));
+}
+
+std::string parametersMarkdown() {
+  const NodeConfig node;
+  stocs::DescribedParams node_keys = NodeConfig::schema().describe(node);
+  node_keys.erase(
+      std::remove_if(node_keys.begin(), node_keys.end(),
+                     [](const auto& p) { return p.first.key.rfind("estimation.", 0) == 0; }),
+      node_keys.end());
+  return fmt::format(
+      "{}## Inputs, outputs, cache\n\n{}\n## Estimation\n\nUnder `estimation:` in the file; "
+      "the last column is the option of the `stocs` tool.\n\n{}",
+      kMarkdownHead, stocs::paramsMarkdown(node_keys, "", false),
+      stocs::paramsMarkdown(stocs::PipelineParams::schema().describe(stocs::PipelineParams()),
+                            "estimation.", true));
+}
+
+}  // namespace stocs_ros

@@ -1,0 +1,210 @@
+#include "stocs/sim/scene_layout.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <opencv2/imgproc.hpp>
+
+#include "stocs/sim/shape_meshes.h"
+#include "stocs/util/range_check.h"
+
+namespace stocs {
+namespace {
+
+constexpr float kPi = static_cast<float>(M_PI);
+
+float uniformIn(Rng& rng, float lo, float hi) {
+  return lo + (hi - lo) * uniform01(rng);
+}
+
+/// Convex hull of the x-y projection of points, in mm.
+std::vector<cv::Point2f> footprintMm(const std::vector<Eigen::Vector3f>& points) {
+  std::vector<cv::Point2f> xy;
+  for (const Eigen::Vector3f& p : points) xy.emplace_back(p.x() * 1000, p.y() * 1000);
+  std::vector<cv::Point2f> hull;
+  cv::convexHull(xy, hull);
+  return hull;
+}
+
+/// Whether two convex footprints are at least `gap_mm` apart along one of their edge normals
+/// (separating axes): then they neither overlap nor come closer than the gap.
+bool separated(const std::vector<cv::Point2f>& a, const std::vector<cv::Point2f>& b, float gap_mm) {
+  for (const std::vector<cv::Point2f>* polygon : {&a, &b}) {
+    const std::vector<cv::Point2f>& p = *polygon;
+    for (size_t i = 0; i < p.size(); ++i) {
+      const cv::Point2f edge = p[(i + 1) % p.size()] - p[i];
+      const cv::Point2f axis(-edge.y, edge.x);
+      const float length = std::hypot(axis.x, axis.y);
+      if (!(length > 0)) continue;
+      float a_lo = 1e30f, a_hi = -1e30f, b_lo = 1e30f, b_hi = -1e30f;
+      for (const cv::Point2f& q : a) {
+        a_lo = std::min(a_lo, axis.dot(q) / length);
+        a_hi = std::max(a_hi, axis.dot(q) / length);
+      }
+      for (const cv::Point2f& q : b) {
+        b_lo = std::min(b_lo, axis.dot(q) / length);
+        b_hi = std::max(b_hi, axis.dot(q) / length);
+      }
+      if (a_hi + gap_mm <= b_lo || b_hi + gap_mm <= a_lo) return true;
+    }
+  }
+  return false;
+}
+
+MeshData randomDistractor(Rng& rng) {
+  if (uniform01(rng) < 0.5f) {
+    return boxMesh(
+        {uniformIn(rng, 0.03f, 0.12f), uniformIn(rng, 0.03f, 0.12f), uniformIn(rng, 0.03f, 0.12f)});
+  }
+  const float radius = uniformIn(rng, 0.02f, 0.05f), height = uniformIn(rng, 0.04f, 0.15f);
+  MeshData cylinder = cylinderMesh(radius, height, 32);
+  for (Eigen::Vector3f& v : cylinder.vertices) v.z() -= height / 2;
+  return cylinder;
+}
+
+}  // namespace
+
+Eigen::Vector3f centreOfMass(const MeshData& mesh) {
+  Eigen::Vector3d weighted = Eigen::Vector3d::Zero();
+  double volume = 0;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    // The tetrahedron (origin, a, b, c): signed volume and centroid.
+    const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(),
+                          b = mesh.vertices[t[1]].cast<double>(),
+                          c = mesh.vertices[t[2]].cast<double>();
+    const double v = a.dot(b.cross(c)) / 6;
+    volume += v;
+    weighted += v * (a + b + c) / 4;
+  }
+  if (std::abs(volume) > 1e-12) return (weighted / volume).cast<float>();
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero();
+  for (const Eigen::Vector3f& p : mesh.vertices) mean += p;
+  return mean / static_cast<float>(std::max<size_t>(1, mesh.vertices.size()));
+}
+
+std::vector<Eigen::Matrix3f> restingOrientations(const MeshData& mesh) {
+  const std::vector<Eigen::Matrix3f> axis_down = {
+      Eigen::Matrix3f::Identity(),                                               // -z down
+      Eigen::AngleAxisf(kPi, Eigen::Vector3f::UnitX()).toRotationMatrix(),       // +z down
+      Eigen::AngleAxisf(kPi / 2, Eigen::Vector3f::UnitY()).toRotationMatrix(),   // +x down
+      Eigen::AngleAxisf(-kPi / 2, Eigen::Vector3f::UnitY()).toRotationMatrix(),  // -x down
+      Eigen::AngleAxisf(-kPi / 2, Eigen::Vector3f::UnitX()).toRotationMatrix(),  // +y down
+      Eigen::AngleAxisf(kPi / 2, Eigen::Vector3f::UnitX()).toRotationMatrix(),   // -y down
+  };
+  const Eigen::Vector3f com = centreOfMass(mesh);
+  const float tolerance = 0.01f * pointSetDiameter(mesh.vertices);
+  std::vector<Eigen::Matrix3f> stable;
+  Eigen::Matrix3f best = axis_down[0];
+  double best_margin = -1e9;
+  for (const Eigen::Matrix3f& r : axis_down) {
+    float lowest = std::numeric_limits<float>::infinity();
+    for (const Eigen::Vector3f& v : mesh.vertices) lowest = std::min(lowest, (r * v).z());
+    std::vector<Eigen::Vector3f> contact;
+    for (const Eigen::Vector3f& v : mesh.vertices) {
+      if ((r * v).z() < lowest + tolerance) contact.push_back(r * v);
+    }
+    const std::vector<cv::Point2f> hull = footprintMm(contact);
+    const Eigen::Vector3f c = r * com;
+    // Millimetres inside the contact hull (negative outside).
+    const double margin =
+        hull.size() < 3 ? -1e6
+                        : cv::pointPolygonTest(hull, cv::Point2f(c.x() * 1000, c.y() * 1000), true);
+    if (margin >= 1.0) stable.push_back(r);
+    if (margin > best_margin) {
+      best_margin = margin;
+      best = r;
+    }
+  }
+  if (stable.empty()) stable.push_back(best);
+  return stable;
+}
+
+void SceneLayoutParams::validate() const {
+  const auto check = [](const char* name, double value, double lo, double hi) {
+    checkRange("scene layout", name, value, lo, hi);
+  };
+  check("objects", objects, 0, 100);
+  check("distractors", distractors, 0, 100);
+  check("table_radius", table_radius, 0, 5);
+  check("gap", gap, 0, 0.5);
+  check("min_distance", min_distance, 0.1, 10);
+  check("max_distance", max_distance, min_distance, 10);
+  check("min_elevation_deg", min_elevation_deg, 5, 85);
+  check("max_elevation_deg", max_elevation_deg, min_elevation_deg, 85);
+}
+
+std::vector<PlacedObject> arrangeObjects(const std::vector<std::pair<int, MeshData>>& models,
+                                         const SceneLayoutParams& params, Rng& rng) {
+  params.validate();
+  std::vector<size_t> order(models.size());
+  std::iota(order.begin(), order.end(), 0);
+  for (size_t i = order.size(); i > 1; --i) {
+    std::swap(order[i - 1], order[uniformIndex(rng, static_cast<uint32_t>(i))]);
+  }
+  std::vector<PlacedObject> wanted;
+  for (int k = 0; k < params.objects && !models.empty(); ++k) {
+    const auto& [id, mesh] = models[order[k % models.size()]];
+    wanted.push_back({id, mesh, Eigen::Isometry3f::Identity()});
+  }
+  for (int k = 0; k < params.distractors; ++k) {
+    wanted.push_back({0, randomDistractor(rng), Eigen::Isometry3f::Identity()});
+  }
+
+  std::vector<PlacedObject> placed;
+  std::vector<std::vector<cv::Point2f>> footprints;
+  for (PlacedObject& object : wanted) {
+    const std::vector<Eigen::Matrix3f> rests = restingOrientations(object.mesh);
+    for (int attempt = 0; attempt < 200; ++attempt) {
+      const Eigen::Matrix3f rotation =
+          Eigen::AngleAxisf(uniformIn(rng, 0, 2 * kPi), Eigen::Vector3f::UnitZ()) *
+          rests[uniformIndex(rng, static_cast<uint32_t>(rests.size()))];
+      const float radius = params.table_radius * std::sqrt(uniform01(rng));
+      const float angle = uniformIn(rng, 0, 2 * kPi);
+      std::vector<Eigen::Vector3f> moved;
+      float lowest = std::numeric_limits<float>::infinity();
+      for (const Eigen::Vector3f& v : object.mesh.vertices) {
+        moved.push_back(rotation * v);
+        lowest = std::min(lowest, moved.back().z());
+      }
+      const Eigen::Vector3f offset(radius * std::cos(angle), radius * std::sin(angle), -lowest);
+      for (Eigen::Vector3f& v : moved) v += offset;
+      const std::vector<cv::Point2f> footprint = footprintMm(moved);
+      const bool free = std::all_of(footprints.begin(), footprints.end(), [&](const auto& other) {
+        return separated(footprint, other, params.gap * 1000);
+      });
+      if (!free) continue;
+      object.pose.linear() = rotation;
+      object.pose.translation() = offset;
+      footprints.push_back(footprint);
+      placed.push_back(std::move(object));
+      break;
+    }
+  }
+  return placed;
+}
+
+Eigen::Isometry3f randomCameraPose(const SceneLayoutParams& params, Rng& rng) {
+  const float elevation =
+      uniformIn(rng, params.min_elevation_deg, params.max_elevation_deg) * kPi / 180;
+  const float azimuth = uniformIn(rng, 0, 2 * kPi);
+  const float distance = uniformIn(rng, params.min_distance, params.max_distance);
+  const Eigen::Vector3f target(uniformIn(rng, -0.03f, 0.03f), uniformIn(rng, -0.03f, 0.03f), 0.03f);
+  const Eigen::Vector3f eye =
+      target + distance * Eigen::Vector3f(std::cos(elevation) * std::cos(azimuth),
+                                          std::cos(elevation) * std::sin(azimuth),
+                                          std::sin(elevation));
+  // Optical frame: z toward the target, x to the right, y down (towards the table at zero roll).
+  const Eigen::Vector3f z = (target - eye).normalized();
+  const Eigen::Vector3f x = z.cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f y = z.cross(x);
+  Eigen::Isometry3f camera_in_table = Eigen::Isometry3f::Identity();
+  camera_in_table.linear().col(0) = x;
+  camera_in_table.linear().col(1) = y;
+  camera_in_table.linear().col(2) = z;
+  camera_in_table.translation() = eye;
+  return camera_in_table.inverse();
+}
+
+}  // namespace stocs

@@ -1,0 +1,229 @@
+#include "stocs/sim/synthetic_dataset.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <set>
+
+#include "stocs/io/bop_dataset.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/sim/bop_writer.h"
+#include "stocs/sim/object_catalogue.h"
+#include "stocs/sim/segmentation_simulator.h"
+#include "stocs/sim/synthetic_frame.h"
+#include "stocs/util/error.h"
+#include "stocs/util/random.h"
+
+namespace stocs {
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Distinct colours (BGR) for object ids 1..8; later ids reuse them.
+cv::Vec3b objectColour(int obj_id) {
+  static const cv::Vec3b palette[] = {{40, 50, 200},  {190, 110, 40}, {60, 170, 60},
+                                      {40, 190, 220}, {170, 60, 150}, {30, 120, 230},
+                                      {160, 160, 60}, {120, 60, 60}};
+  return palette[(obj_id - 1) % 8];
+}
+
+/// Distractors take a random colour, or half of the time one close to a dataset object's, so that
+/// the segmentation simulator finds look-alikes.
+std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects, Rng& rng) {
+  std::vector<cv::Vec3b> colours;
+  std::vector<int> ids;
+  for (const PlacedObject& o : objects) {
+    if (o.obj_id > 0) ids.push_back(o.obj_id);
+  }
+  for (const PlacedObject& o : objects) {
+    if (o.obj_id > 0) {
+      colours.push_back(objectColour(o.obj_id));
+      continue;
+    }
+    cv::Vec3b c;
+    const bool lookalike = !ids.empty() && uniform01(rng) < 0.5f;
+    const cv::Vec3b like =
+        lookalike ? objectColour(ids[uniformIndex(rng, static_cast<uint32_t>(ids.size()))]) : c;
+    for (int k = 0; k < 3; ++k) {
+      const float jitter = 40 * uniform01(rng) - 20;
+      c[k] = cv::saturate_cast<uint8_t>(lookalike ? like[k] + jitter : 255 * uniform01(rng));
+    }
+    colours.push_back(c);
+  }
+  return colours;
+}
+
+void writeImage(const fs::path& file, const cv::Mat& image) {
+  fs::create_directories(file.parent_path());
+  if (!cv::imwrite(file.string(), image)) {
+    throw InputError(fmt::format("{}: cannot write image", file.string()));
+  }
+}
+
+/// The files of a BOP models folder that a dataset needs (obj_*.ply, models_info.json), checked
+/// before anything is written.
+std::vector<fs::path> modelFiles(const fs::path& source) {
+  std::error_code ec;
+  if (!fs::is_directory(source, ec)) {
+    throw InputError(fmt::format("synth: models {}: not a folder", source.string()));
+  }
+  std::vector<fs::path> files;
+  bool any_model = false;
+  for (const fs::directory_entry& e : fs::directory_iterator(source)) {
+    const std::string name = e.path().filename().string();
+    const bool model = name.rfind("obj_", 0) == 0 && e.path().extension() == ".ply";
+    if (model || name == "models_info.json") files.push_back(e.path());
+    any_model |= model;
+  }
+  if (!any_model) {
+    throw InputError(fmt::format("synth: models {}: no obj_*.ply files", source.string()));
+  }
+  return files;
+}
+
+/// The dataset's models: the given files copied, or the catalogue written out when there are none.
+void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& files) {
+  fs::create_directories(models);
+  if (files.empty()) {
+    writeModels(models, objectCatalogue());
+    return;
+  }
+  for (const fs::path& file : files) {
+    fs::copy_file(file, models / file.filename(), fs::copy_options::overwrite_existing);
+  }
+}
+
+BopGtInfo visibility(const cv::Mat& labels, int label, long silhouette_pixels) {
+  BopGtInfo info;
+  const cv::Mat mask = labels == label;
+  info.px_count_all = silhouette_pixels;
+  info.px_count_visib = cv::countNonZero(mask);
+  info.visib_fract =
+      silhouette_pixels > 0 ? static_cast<float>(info.px_count_visib) / silhouette_pixels : 0.0f;
+  if (info.px_count_visib > 0) {
+    const cv::Rect box = cv::boundingRect(mask);
+    info.bbox_visib[0] = box.x;
+    info.bbox_visib[1] = box.y;
+    info.bbox_visib[2] = box.width;
+    info.bbox_visib[3] = box.height;
+  }
+  return info;
+}
+
+}  // namespace
+
+void SyntheticDatasetParams::validate() const {
+  if (scenes < 1 || images_per_scene < 1) {
+    throw InputError(
+        fmt::format("synth: needs at least one scene and one image per scene (got {} "
+                    "scenes, {} images)",
+                    scenes, images_per_scene));
+  }
+  if (layout.objects < 1) {
+    throw InputError(
+        fmt::format("synth: needs at least one object per scene (got {})", layout.objects));
+  }
+  if (!camera.valid()) {
+    throw InputError(fmt::format(
+        "synth: camera intrinsics are invalid (width {}, height {}, fx {}, fy {}: all must be "
+        "positive)",
+        camera.width, camera.height, camera.fx, camera.fy));
+  }
+  if (!(depth_noise_level >= 0 && depth_noise_level <= 10)) {
+    throw InputError(
+        fmt::format("synth: depth noise level {} is outside [0, 10]", depth_noise_level));
+  }
+  if (!(depth_scale > 0)) throw InputError("synth: depth_scale must be positive");
+  layout.validate();
+  depth_noise.validate();
+  segmentationPreset(segmentation_preset);
+}
+
+void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& params,
+                           const fs::path& models_dir,
+                           const std::function<void(const SyntheticImageReport&)>& progress) {
+  params.validate();
+  const std::vector<fs::path> model_files =
+      models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
+  std::error_code ec;
+  if (fs::exists(root, ec) && !fs::is_empty(root, ec)) {
+    throw InputError(fmt::format("synth: {} exists and is not empty", root.string()));
+  }
+  fs::create_directories(root / "test", ec);
+  if (ec) {
+    throw InputError(fmt::format("synth: cannot create {}: {}", root.string(), ec.message()));
+  }
+  writeModelsFolder(root / "models", model_files);
+  const BopDataset dataset(root);
+  std::vector<std::pair<int, MeshData>> models;
+  for (const auto& [id, info] : dataset.modelsInfo()) {
+    models.emplace_back(id, loadMesh(dataset.modelPath(id).string(), 0.001f));
+  }
+  if (models.empty()) {
+    throw InputError(
+        fmt::format("synth: {} lists no models", (root / "models" / "models_info.json").string()));
+  }
+  const SegmentationNoiseParams segmentation = segmentationPreset(params.segmentation_preset);
+  const DepthNoiseParams noise = params.depth_noise.atLevel(params.depth_noise_level);
+  BopFrameCamera bop_camera;
+  bop_camera.K << params.camera.fx, 0, params.camera.cx, 0, params.camera.fy, params.camera.cy, 0,
+      0, 1;
+  bop_camera.depth_scale = params.depth_scale;
+
+  for (int scene = 0; scene < params.scenes; ++scene) {
+    Rng rng(streamSeed(params.seed, static_cast<uint64_t>(scene)));
+    const std::vector<PlacedObject> objects = arrangeObjects(models, params.layout, rng);
+    const std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
+    const fs::path dir = dataset.sceneDir(scene);
+    std::map<int, BopFrameCamera> cameras;
+    std::map<int, std::vector<BopGtInstance>> gt;
+    std::map<int, std::vector<BopGtInfo>> gt_info;
+    for (int im = 0; im < params.images_per_scene; ++im) {
+      const auto start = std::chrono::steady_clock::now();
+      const Eigen::Isometry3f camera_pose = randomCameraPose(params.layout, rng);
+      const uint64_t image_seed =
+          streamSeed(params.seed, (static_cast<uint64_t>(scene + 1) << 32) + im);
+      const SyntheticFrame frame =
+          renderSyntheticFrame(objects, colours, camera_pose, params.camera, noise, image_seed);
+
+      SegmentationScene seen{frame.labels, {}, frame.rgb};
+      std::set<int> present;
+      gt[im].clear();  // an image whose objects all found no place still gets its (empty) entry
+      for (size_t i = 0; i < objects.size(); ++i) {
+        seen.obj_ids.push_back(objects[i].obj_id);  // distractors are 0: never a target
+        if (objects[i].obj_id == 0) continue;
+        const Eigen::Isometry3f pose = camera_pose * objects[i].pose;
+        gt[im].push_back({objects[i].obj_id, pose.linear().cast<double>(),
+                          pose.translation().cast<double>() * 1000.0});
+        const int label = static_cast<int>(i) + 1;
+        gt_info[im].push_back(visibility(frame.labels, label, frame.silhouette_pixels[i]));
+        writeImage(dir / "mask_visib" / fmt::format("{:06d}_{:06d}.png", im, gt[im].size() - 1),
+                   frame.labels == label);
+        present.insert(objects[i].obj_id);
+      }
+      for (int obj : present) {
+        const cv::Mat probability =
+            simulateSegmentation(seen, obj, segmentation, streamSeed(image_seed, obj + 2));
+        cv::Mat prob16;
+        probability.convertTo(prob16, CV_16UC1, 10000.0);
+        writeImage(dataset.probabilityPath(scene, im, obj), prob16);
+      }
+      cv::Mat depth16;
+      frame.depth.convertTo(depth16, CV_16UC1, 1000.0 / params.depth_scale);
+      writeImage(dataset.depthPath(scene, im), depth16);
+      writeImage(dataset.rgbPath(scene, im), frame.rgb);
+      cameras[im] = bop_camera;
+      if (progress) {
+        progress({scene, im, static_cast<int>(gt[im].size()),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+      }
+    }
+    writeSceneCameras(dir / "scene_camera.json", cameras);
+    writeSceneGroundTruth(dir / "scene_gt.json", gt);
+    writeSceneGtInfo(dir / "scene_gt_info.json", gt_info);
+  }
+}
+
+}  // namespace stocs
