@@ -36,7 +36,7 @@ endif()
 
 # The seed corpus generator (a plain program: it writes fuzz/corpus/<target>/seed_* files).
 add_executable(stocs_fuzz_make_corpus ${PROJECT_SOURCE_DIR}/fuzz/make_corpus.cpp)
-target_link_libraries(stocs_fuzz_make_corpus stocs_core nlohmann_json::nlohmann_json)
+target_link_libraries(stocs_fuzz_make_corpus stocs_core nlohmann_json::nlohmann_json opencv_imgcodecs)
 target_compile_options(stocs_fuzz_make_corpus PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
 target_link_options(stocs_fuzz_make_corpus PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS})
 

@@ -24,7 +24,8 @@ list(FILTER STOCS_ROS_SOURCES EXCLUDE REGEX "(_main|nodelets)\\.cpp$")
 add_library(stocs_ros ${STOCS_ROS_SOURCES})
 target_include_directories(stocs_ros PUBLIC ${PROJECT_SOURCE_DIR}/include ${CATKIN_DEVEL_PREFIX}/include)
 target_include_directories(stocs_ros SYSTEM PUBLIC ${catkin_INCLUDE_DIRS})
-target_link_libraries(stocs_ros PUBLIC stocs_core ${catkin_LIBRARIES} PRIVATE yaml-cpp)
+target_link_libraries(stocs_ros PUBLIC stocs_core ${catkin_LIBRARIES}
+  PRIVATE yaml-cpp opencv_imgcodecs)
 add_dependencies(stocs_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
 
 add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)

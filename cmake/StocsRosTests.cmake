@@ -20,7 +20,7 @@ set(STOCS_ROS_TEST_DATA ${CMAKE_CURRENT_BINARY_DIR}/ros_test_data)
 add_executable(stocs_ros_make_test_data EXCLUDE_FROM_ALL
   ${PROJECT_SOURCE_DIR}/test/ros/make_test_data.cpp ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
 target_include_directories(stocs_ros_make_test_data PRIVATE ${PROJECT_SOURCE_DIR}/test)
-target_link_libraries(stocs_ros_make_test_data stocs_core GTest::gtest)
+target_link_libraries(stocs_ros_make_test_data stocs_core GTest::gtest opencv_imgproc opencv_imgcodecs)
 target_compile_definitions(stocs_ros_make_test_data PRIVATE
   STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}")
 add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml

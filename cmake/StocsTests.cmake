@@ -21,7 +21,7 @@ endif()
 # sanitizers that was 9 s of CPU per program).
 add_library(stocs_test_support STATIC ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
 target_include_directories(stocs_test_support PUBLIC ${PROJECT_SOURCE_DIR}/test)
-target_link_libraries(stocs_test_support PUBLIC stocs_core GTest::gtest)
+target_link_libraries(stocs_test_support PUBLIC stocs_core GTest::gtest opencv_imgproc opencv_imgcodecs)
 target_compile_definitions(stocs_test_support PRIVATE
   STOCS_DATASETS_DEFAULT="${STOCS_DATASETS_DIR}"
   STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}")

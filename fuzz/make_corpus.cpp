@@ -11,6 +11,7 @@
 #include "model_cache_setup.h"
 #include "ros_message_layout.h"
 #include "stocs/io/bop_dataset.h"
+#include "stocs/sim/shape_meshes.h"
 
 namespace fs = std::filesystem;
 using stocs::fuzz::ByteWriter;

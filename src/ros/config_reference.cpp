@@ -23,7 +23,7 @@ objects:
     id: 6                      # numeric id in ~objects (default: position in this list + 1)
     model: $(env STOCS_DATASETS)/lmo-cat/models/obj_000006.ply
     unit_scale: 0.001          # model units to metres (BOP models are in mm)
-    mesh: ""                   # rviz mesh (package://, file path); empty: markers show model samples
+    mesh: ""                   # rviz mesh (package://, path); empty: markers show model samples
     # mesh_scale: 0.001        # mesh units to metres (default: unit_scale)
     symmetries:                # as in BOP models_info.json, in model units
       discrete: []             # row-major 4x4 transforms, identity not listed

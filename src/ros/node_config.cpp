@@ -177,18 +177,6 @@ ObjectConfig readObject(MapReader reader, int position, const fs::path& dir) {
   return o;
 }
 
-/// Reads `input.channels`, the one input key that is a list (the others are in the schema).
-void readChannels(MapReader& reader, InputConfig& in) {
-  const YAML::Node channels = reader.node("channels");
-  if (channels && !channels.IsSequence()) {
-    reader.fail(channels, reader.fullName("channels"), "expected a list of object names");
-  }
-  for (size_t k = 0; channels && k < channels.size(); ++k) {
-    in.channels.push_back(
-        reader.convert<std::string>(channels[k], fmt::format("input.channels[{}]", k)));
-  }
-}
-
 void checkChannels(const NodeConfig& c) {
   const std::string file = c.file.string();
   if (c.input.probability != ProbabilitySource::kMultichannel) {
@@ -264,6 +252,14 @@ class SchemaReader {
     *field = map.convert<T>(node, key);
   }
   static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
+                     const stocs::ParamInfo&, std::vector<std::string>* field) {
+    if (!node.IsSequence()) map.fail(node, key, "expected a list");
+    field->clear();
+    for (size_t k = 0; k < node.size(); ++k) {
+      field->push_back(map.convert<std::string>(node[k], fmt::format("{}[{}]", key, k)));
+    }
+  }
+  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
                      const stocs::ParamInfo& info, const stocs::ChoiceRef& field) {
     const std::string value = map.convert<std::string>(node, key);
     if (std::find(info.choices.begin(), info.choices.end(), value) == info.choices.end()) {
@@ -289,6 +285,8 @@ const stocs::ParamSet<InputConfig>& InputConfig::schema() {
                   {{"per_object", ProbabilitySource::kPerObject},
                    {"multichannel", ProbabilitySource::kMultichannel}},
                   "per_object: ~probability/<name>; multichannel: one ~probability")
+          .add(&InputConfig::channels, "channels", "", std::nullopt,
+               "multichannel: the object name of each channel in order, \"-\" to ignore one")
           .add(&InputConfig::uint16_scale, "uint16_scale", "", stocs::ParamRange::aboveUpTo(0, 1e9),
                "mono16 probability = value / uint16_scale")
           .add(&InputConfig::boundary, "boundary",
@@ -363,7 +361,6 @@ NodeConfig loadNodeConfig(const fs::path& file) {
   }
   SchemaReader schema(reader);
   schema.read(NodeConfig::schema(), c);
-  readChannels(schema.mapAt("input"), c.input);
   schema.rejectUnknownKeys();
   checkChannels(c);
   if (c.model_cache_setting.empty()) {

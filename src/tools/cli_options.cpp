@@ -18,8 +18,10 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
         info.unit.empty() ? info.meaning : fmt::format("{} ({})", info.meaning, info.unit);
     CLI::Option* option = std::visit(
         [&](auto field) -> CLI::Option* {
-          if constexpr (std::is_same_v<decltype(field), ChoiceRef>) {
-            return nullptr;  // the core has no choice parameters
+          using Field = decltype(field);
+          if constexpr (std::is_same_v<Field, ChoiceRef> ||
+                        std::is_same_v<Field, std::vector<std::string>*>) {
+            return nullptr;  // the core has no choice or list parameters
           } else {
             return cmd.add_option(info.cliFlag(), *field, help);
           }

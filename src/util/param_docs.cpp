@@ -7,7 +7,8 @@
 namespace stocs {
 namespace {
 
-constexpr size_t kCommentColumn = 32;
+constexpr size_t kCommentColumn = 31;
+constexpr size_t kLineWidth = 100;
 
 std::vector<std::string> split(const std::string& key) {
   std::vector<std::string> parts;
@@ -50,6 +51,25 @@ std::string markdownCell(const std::string& text) {
   return out;
 }
 
+/// `line` with `text` as a comment from kCommentColumn on, wrapped before kLineWidth.
+std::string commented(std::string line, const std::string& text) {
+  const size_t column = std::max(line.size() + 1, kCommentColumn);
+  std::string out;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.size();
+    if (column + 2 + (end - start) > kLineWidth) {
+      end = text.rfind(' ', start + (kLineWidth - column - 2));
+      if (end == std::string::npos || end <= start) end = text.size();
+    }
+    line.resize(column, ' ');
+    out += line + "# " + text.substr(start, end - start) + "\n";
+    line.clear();
+    start = end + (end < text.size() ? 1 : 0);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string paramsYaml(const DescribedParams& params, int indent) {
@@ -61,14 +81,16 @@ std::string paramsYaml(const DescribedParams& params, int indent) {
     path.pop_back();
     size_t common = 0;
     while (common < open.size() && common < path.size() && open[common] == path[common]) ++common;
+    // A blank line between the top-level sections.
+    if (!out.empty() && common == 0 && (!path.empty() || !open.empty())) out += "\n";
     for (size_t level = common; level < path.size(); ++level) {
       out += fmt::format("{:{}}{}:\n", "", indent + 2 * static_cast<int>(level), path[level]);
     }
     open = path;
-    std::string line = fmt::format("{:{}}{}: {}", "", indent + 2 * static_cast<int>(path.size()),
-                                   leaf, value.empty() ? "\"\"" : value);
-    line.resize(std::max(line.size() + 1, kCommentColumn), ' ');
-    out += line + "# " + comment(info) + "\n";
+    const std::string line =
+        fmt::format("{:{}}{}: {}", "", indent + 2 * static_cast<int>(path.size()), leaf,
+                    value.empty() ? "\"\"" : value);
+    out += commented(line, comment(info));
   }
   return out;
 }

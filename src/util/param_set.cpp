@@ -37,6 +37,7 @@ std::optional<double> numeric(const ParamRef& value) {
       [](const auto& v) -> std::optional<double> {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, bool*> || std::is_same_v<T, std::string*> ||
+                      std::is_same_v<T, std::vector<std::string>*> ||
                       std::is_same_v<T, ChoiceRef>) {
           return std::nullopt;
         } else {
@@ -54,6 +55,8 @@ std::string paramText(const ParamRef& value) {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, ChoiceRef>) {
           return v.get();
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>*>) {
+          return fmt::format("[{}]", fmt::join(*v, ", "));
         } else {
           return fmt::format("{}", *v);
         }

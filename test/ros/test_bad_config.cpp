@@ -51,7 +51,7 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
                   "estimation.stocs.basez: unknown key");
   expectNodeFails(writeConfig(dir, "out_of_range.yaml",
                               std::string(kObject) + "estimation: {stocs: {bases: 0}}\n"),
-                  "bases 0 is outside");
+                  "estimation.stocs.bases: 0 is outside [1, 1000000]");
   expectNodeFails(writeConfig(dir, "wrong_type.yaml",
                               std::string(kObject) + "input: {sync: {tolerance: soon}}\n"),
                   "input.sync.tolerance: expected a number, got 'soon'");

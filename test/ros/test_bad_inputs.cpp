@@ -211,7 +211,7 @@ TEST_F(BadInputs, ReloadAppliesAGoodFileAndKeepsTheSetupOnABadOne) {
 
   std_srvs::Trigger::Response r = reloadWith(original + "estimation: {stocs: {bases: 0}}\n");
   EXPECT_FALSE(r.success);
-  EXPECT_NE(r.message.find("bases 0 is outside"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("estimation.stocs.bases: 0 is outside"), std::string::npos) << r.message;
   r = reloadWith(original + "input: {uint16_scale: 100}\n");
   EXPECT_FALSE(r.success);
   EXPECT_NE(r.message.find("restart the node"), std::string::npos) << r.message;

@@ -108,7 +108,7 @@ TEST(Cli, BadInputsExitNonZeroWithAMessage) {
                                  " --out x.csv --focus-exponent 0",
                              out),
             2);
-  EXPECT_NE(out.find("base focus exponent 0 is outside [1, 16]"), std::string::npos) << out;
+  EXPECT_NE(out.find("--focus-exponent 0 is outside [1, 16]"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
                                  " --out x.csv --scenes 9",
                              out),

@@ -120,10 +120,12 @@ TEST(ParamSet, YamlNestsKeysAndCommentsEachValue) {
   outer.add(&Outer::on, "on", "switch").nest(&Outer::inner, "inner", inner);
   outer.add(&Outer::size, "size", "m", ParamRange::aboveUpTo(0, 1), "edge");
   EXPECT_EQ(paramsYaml(outer.describe(Outer())),
-            "on: true                        # switch\n"
+            "on: true                       # switch\n"
+            "\n"
             "inner:\n"
-            "  steps: 3                      # steps taken ([1, 9])\n"
-            "size: 0.5                       # edge (m, (0, 1])\n");
+            "  steps: 3                     # steps taken ([1, 9])\n"
+            "\n"
+            "size: 0.5                      # edge (m, (0, 1])\n");
 }
 
 }  // namespace

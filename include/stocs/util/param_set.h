@@ -53,7 +53,8 @@ struct ChoiceRef {
 };
 
 /// One field of a parameter struct, as the schema reaches it.
-using ParamRef = std::variant<bool*, int*, float*, double*, uint64_t*, std::string*, ChoiceRef>;
+using ParamRef = std::variant<bool*, int*, float*, double*, uint64_t*, std::string*,
+                              std::vector<std::string>*, ChoiceRef>;
 
 /// What a schema says of one parameter.
 struct ParamInfo {

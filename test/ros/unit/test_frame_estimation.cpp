@@ -167,7 +167,7 @@ TEST_F(FrameEstimation, BadInputsAreNamed) {
 
   EstimationJob budget = cloudJob();
   budget.time_budget = 7200;
-  EXPECT_NE(errorOf(budget, *s).find("time budget 7200 s is outside"), std::string::npos)
+  EXPECT_NE(errorOf(budget, *s).find("time_budget 7200 s is outside [0, 3600]"), std::string::npos)
       << errorOf(budget, *s);
 }
 
