@@ -31,7 +31,7 @@ def strip_comment(line):
 
 
 def is_inline_command(span):
-    """A ROS tool with arguments: `rostopic echo /x` is a command, `rviz` alone a launch argument."""
+    """A ROS tool with arguments: `rostopic echo /x` is a command, `rviz` alone an argument."""
     words = span.split()
     return len(words) > 1 and words[0] in ROS_TOOLS
 

@@ -23,18 +23,20 @@ stage_done "installing dependencies"
 if [ -n "${STOCS_DATASETS:-}" ]; then
   echo "run_tests: real-data tests read $STOCS_DATASETS"
 else
-  echo "run_tests: STOCS_DATASETS is not set; real-data tests and README's ROS commands will be skipped"
+  echo "run_tests: STOCS_DATASETS is not set; real-data tests and README's ROS commands are skipped"
 fi
 
 # catkin_lint on the package, as a workspace holds it (a folder named after the package); any
 # finding fails. CMakeLists.txt turns off, each with its reason, the few that are wrong here.
 lint_dir=$(mktemp -d)
 ln -s "$REPO" "$lint_dir/stocs_ros"
-if ! catkin_lint -W2 --strict --offline "$lint_dir/stocs_ros"; then
+lint_status=0
+catkin_lint -W2 --strict --offline "$lint_dir/stocs_ros" || lint_status=$?
+rm -r "$lint_dir"
+if [ $lint_status -ne 0 ]; then
   echo "run_tests: catkin_lint FAILED"
   exit 1
 fi
-rm -r "$lint_dir"
 stage_done "catkin_lint"
 
 # The catkin build holds the ROS tests; the core's tests (unit, CLI, real data) run once, in the
