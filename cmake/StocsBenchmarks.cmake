@@ -10,3 +10,8 @@ foreach(name stage scaling)
   add_executable(stocs_${name}_benchmarks ${PROJECT_SOURCE_DIR}/benchmark/${name}_benchmarks.cpp)
   target_link_libraries(stocs_${name}_benchmarks PRIVATE stocs_benchmark_frames benchmark::benchmark)
 endforeach()
+
+if(STOCS_CATKIN)
+  install(TARGETS stocs_scaling_benchmarks stocs_stage_benchmarks
+    RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+endif()

@@ -1,9 +1,8 @@
 # Pose estimation methods behind one interface (StoCS, its ablations, baselines), kept out of the
-# core so that heavy registration and surface-matching headers compile only here. The baselines'
-# packages are found here, not in the core: PCL's 4PCS family (registration, with the kd-tree and
-# search it queries and the plane model of its base selection) and OpenCV's PPF detector.
-find_package(PCL REQUIRED COMPONENTS registration search kdtree sample_consensus)
-find_package(OpenCV REQUIRED COMPONENTS surface_matching)
+# core so that heavy registration and surface-matching headers compile only here. Only this library
+# links the baselines' components (found with the core's in CMakeLists.txt): PCL's 4PCS family
+# (registration, with the kd-tree and search it queries and the plane model of its base selection)
+# and OpenCV's PPF detector.
 
 file(GLOB STOCS_METHOD_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/methods/*.cpp)
 add_library(stocs_methods ${STOCS_METHOD_SOURCES})

@@ -1,9 +1,7 @@
 # Tests of the ROS wrappers (catkin only): unit gtests that need no ROS master, the rostest
 # integration tests (the node, the nodelet and the scene publisher together), and the launch file
-# check. All run through `catkin_make run_tests`, as scripts/run_tests.sh does.
-if(NOT CATKIN_ENABLE_TESTING)
-  return()
-endif()
+# check. All run through `catkin_make run_tests`, as scripts/run_tests.sh does. Included only with
+# CATKIN_ENABLE_TESTING.
 find_package(rostest REQUIRED)
 find_package(roslaunch REQUIRED)
 roslaunch_add_file_check(launch)

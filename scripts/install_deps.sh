@@ -18,6 +18,14 @@ PACKAGES=(
   libxxhash-dev
   gnuplot-nox
   clang libclang-rt-14-dev libomp-14-dev
+  # What README's commands use: rosrun, tf_echo, rosbag, rviz (headless under xvfb-run, which
+  # needs xauth; Xvfb draws OpenGL with Mesa's software renderer), and the Python messages that
+  # rostopic and rosservice load for every type they echo or call. catkin_lint checks package.xml
+  # and CMake in scripts/run_tests.sh.
+  rosbash tf-tools python3-rosbag rviz xvfb xauth libgl1-mesa-dri
+  python3-rostopic python3-rosservice python3-rosnode python3-genpy
+  python3-diagnostic-msgs python3-std-srvs python3-rosgraph-msgs
+  catkin-lint
 )
 
 missing=()

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Installs dependencies, builds, and runs every test: the ROS tests in the catkin build (gtests of
-# the wrappers, rostests, the launch file check), then the core's tests (unit, CLI and, when
-# STOCS_DATASETS names the real-data folder, the real-frame acceptance tests) in an
-# AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core, then a short run of
-# every fuzz target (scripts/fuzz.sh).
+# Installs dependencies, lints the package (catkin_lint), builds, and runs every test: the ROS tests
+# in the catkin build (gtests of the wrappers, rostests, the launch file check), README's ROS
+# commands as written (scripts/check_readme_ros.sh, when STOCS_DATASETS names the real-data
+# folder), then the core's tests (unit, CLI and, with STOCS_DATASETS, the real-frame acceptance
+# tests) in an AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core, then a
+# short run of every fuzz target (scripts/fuzz.sh).
 # Exits non-zero when anything fails. STOCS_SKIP_SANITIZERS=1 runs the core's tests in a build
 # without sanitizers, STOCS_SKIP_FUZZ=1 skips the fuzzing; STOCS_FUZZ_SECONDS sets the time per
 # fuzz target (default 15).
@@ -22,8 +23,21 @@ stage_done "installing dependencies"
 if [ -n "${STOCS_DATASETS:-}" ]; then
   echo "run_tests: real-data tests read $STOCS_DATASETS"
 else
-  echo "run_tests: STOCS_DATASETS is not set; real-data tests will be skipped"
+  echo "run_tests: STOCS_DATASETS is not set; real-data tests and README's ROS commands are skipped"
 fi
+
+# catkin_lint on the package, as a workspace holds it (a folder named after the package); any
+# finding fails. CMakeLists.txt turns off, each with its reason, the few that are wrong here.
+lint_dir=$(mktemp -d)
+ln -s "$REPO" "$lint_dir/stocs_ros"
+lint_status=0
+catkin_lint -W2 --strict --offline "$lint_dir/stocs_ros" || lint_status=$?
+rm -r "$lint_dir"
+if [ $lint_status -ne 0 ]; then
+  echo "run_tests: catkin_lint FAILED"
+  exit 1
+fi
+stage_done "catkin_lint"
 
 # The catkin build holds the ROS tests; the core's tests (unit, CLI, real data) run once, in the
 # sanitizer build below, rather than in both builds.
@@ -38,6 +52,12 @@ if ! catkin_test_results --verbose "$WS/build/test_results"; then
   exit 1
 fi
 stage_done "the ROS tests"
+
+# README's ROS commands, run as written on the real LM-O frame, in the catkin build above.
+if [ -n "${STOCS_DATASETS:-}" ]; then
+  "$REPO/scripts/check_readme_ros.sh"
+  stage_done "README's ROS commands"
+fi
 
 # The core's tests, in an AddressSanitizer + UndefinedBehaviorSanitizer build unless
 # STOCS_SKIP_SANITIZERS=1 (then in a plain build). -O1 with line tables only (-g1), as OSS-Fuzz
