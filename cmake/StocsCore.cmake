@@ -32,7 +32,8 @@ endfunction()
 
 stocs_add_module(util PUBLIC Eigen3::Eigen fmt::fmt)
 stocs_add_module(geometry PUBLIC stocs_util opencv_core)
-# knn_index.h, a public header, wraps nanoflann (header-only).
+# knn_index.h, a public header, wraps nanoflann (header-only); the path is for the build tree only.
+#catkin_lint: ignore_once EXTERNAL_INTERFACE_PATH
 target_include_directories(stocs_geometry SYSTEM PUBLIC $<BUILD_INTERFACE:${NANOFLANN_INCLUDE_DIR}>)
 stocs_add_module(io PUBLIC stocs_geometry
   PRIVATE opencv_imgcodecs nlohmann_json::nlohmann_json ${PCL_COMMON_LIBRARIES} ${PCL_IO_LIBRARIES})
