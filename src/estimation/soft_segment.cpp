@@ -123,9 +123,60 @@ int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, 
                                      static_cast<float>(std::max(cloud.width, cloud.height))));
 }
 
-SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
-                             float focal_px, const SoftSegmentParams& params, int threads) {
-  params.validate();
+namespace {
+
+/// Rows of a chunk: the image is cut into chunks of kChunkRows rows, handed to the threads as they
+/// come free (the object's pixels crowd into a few rows, and halves of the image left one thread
+/// idle for most of the scan). The chunks are the same for every thread count, and so is the
+/// result.
+constexpr int kChunkRows = 16;
+constexpr uint64_t kNoKey = ~uint64_t{0};  // packVoxelCell never sets the top bit
+
+/// A scanned pixel above epsilon with depth.
+struct KeptPixel {
+  int pixel;
+  int group;  // in its chunk
+};
+
+/// What pass 1 finds in one chunk, and pass 2's numbering of its groups.
+struct Chunk {
+  std::vector<KeptPixel> kept;  // in image order
+  std::vector<Voxel> groups;    // in order of first pixel
+  std::vector<uint64_t> keys;   // of the groups
+  std::vector<int> merged;      // group of the segment, per group of the chunk
+};
+
+/// What a thread remembers from chunk to chunk, allocated before the threads start: an exception
+/// must not leave an OpenMP region, and the chunks' own growth is caught in scanChunks.
+struct Scanner {
+  explicit Scanner(int width)
+      : above_key(static_cast<size_t>(width), kNoKey),
+        above_group(static_cast<size_t>(width), -1) {}
+
+  GroupOfKey group_of_key;
+  std::vector<uint64_t> above_key;
+  std::vector<int> above_group;
+  bool dirty = false;  // the previous chunk kept pixels (most chunks of an image keep none)
+};
+
+/// The last key seen on a chunk's current row, and its group.
+struct LeftKey {
+  uint64_t key = kNoKey;
+  int group = -1;
+};
+
+/// What the passes read of the image.
+struct SegmentInput {
+  const OrganizedCloud& cloud;
+  const cv::Mat& probability;
+  int stride;       // scan every stride-th row and column
+  float inv_voxel;  // 1 / voxel size; 0: every pixel is its own group
+  float threshold;  // epsilon
+};
+
+/// Throws InputError unless the probability image is a CV_32FC1 image of the cloud's size and the
+/// focal length is positive.
+void checkSegmentInputs(const OrganizedCloud& cloud, const cv::Mat& probability, float focal_px) {
   if (probability.type() != CV_32FC1) {
     throw InputError("probability image must be CV_32FC1 (use toProbabilityImage)");
   }
@@ -136,115 +187,96 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
   if (!(focal_px > 0) || !std::isfinite(focal_px)) {
     throw InputError(fmt::format("focal length {} px is not positive", focal_px));
   }
+}
 
-  // The image is cut into chunks of kChunkRows rows, handed to the threads as they come free
-  // (the object's pixels crowd into a few rows, and halves of the image left one thread idle for
-  // most of the scan). The chunks are the same for every thread count, and so is the result.
-  //
-  // Pass 1, per chunk: the pixels above epsilon with depth, on every stride-th row and column,
-  // grouped by voxel (each pixel is its own group at voxel size 0) in image order, each group
-  // summed in that order. Most of an image is background, below epsilon: a block of 16 scanned
-  // pixels with none above it is skipped after 16 branch-free comparisons (a test and a branch per
-  // pixel cost 10 instructions, 3 M per 640x480 image, a fifth of the cat's soft segment). A voxel
-  // spans several pixels, so the key of the pixel to the left or above is usually the same:
-  // remembering their groups skips most hash lookups. A remembered key always maps to its group.
-  const int stride = segmentPixelStride(cloud, probability, focal_px, params);
-  const float inv = params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f;
-  const float threshold = params.min_probability;
-  constexpr int kChunkRows = 16;
-  struct KeptPixel {
-    int pixel;
-    int group;  // in its chunk
-  };
-  struct Chunk {
-    std::vector<KeptPixel> kept;  // in image order
-    std::vector<Voxel> groups;    // in order of first pixel
-    std::vector<uint64_t> keys;   // of the groups
-    std::vector<int> merged;      // group of the segment, per group of the chunk
-  };
-  std::vector<Chunk> chunks(static_cast<size_t>((cloud.height + kChunkRows - 1) / kChunkRows));
-  const auto chunk_count = static_cast<std::ptrdiff_t>(chunks.size());
-  const int team =
-      std::clamp(threads, 1, static_cast<int>(std::max<std::ptrdiff_t>(1, chunk_count)));
-  constexpr uint64_t kNoKey = ~uint64_t{0};  // packVoxelCell never sets the top bit
-  // What a thread remembers from chunk to chunk, allocated here: an exception must not leave an
-  // OpenMP region, and the chunks' own growth is caught below.
-  struct Scanner {
-    GroupOfKey group_of_key;
-    std::vector<uint64_t> above_key;
-    std::vector<int> above_group;
-    bool dirty = false;  // the previous chunk kept pixels (most chunks of an image keep none)
-  };
-  std::vector<Scanner> scanners(static_cast<size_t>(team));
-  for (Scanner& scanner : scanners) {
-    scanner.above_key.assign(static_cast<size_t>(cloud.width), kNoKey);
-    scanner.above_group.assign(static_cast<size_t>(cloud.width), -1);
-  }
-  auto scan = [&](std::ptrdiff_t c, Scanner& scanner) {
-    Chunk& chunk = chunks[static_cast<size_t>(c)];
-    if (scanner.dirty) {
-      scanner.group_of_key.clear();
-      std::fill(scanner.above_key.begin(), scanner.above_key.end(), kNoKey);
-    }
-    uint64_t left_key = kNoKey;
-    int left_group = -1;
-    const int from = static_cast<int>(c) * kChunkRows;
-    const int to = std::min(cloud.height, from + kChunkRows);
-    for (int v = (from + stride - 1) / stride * stride; v < to; v += stride) {
-      const float* prob_row = probability.ptr<float>(v);
-      auto visit = [&](int u) {
-        const int i = v * cloud.width + u;
-        if (!(prob_row[u] > threshold) || !cloud.isValid(i)) return;
-        const Eigen::Vector3f& p = cloud.points[static_cast<size_t>(i)];
-        int g = static_cast<int>(chunk.groups.size());
-        if (inv > 0) {
-          const uint64_t key = packVoxelCell(voxelCell(p, inv));
-          if (key == left_key) {
-            g = left_group;
-          } else if (key == scanner.above_key[u]) {
-            g = scanner.above_group[u];
-          } else {
-            g = scanner.group_of_key.findOrAdd(key, g);
-          }
-          left_key = scanner.above_key[u] = key;
-          left_group = scanner.above_group[u] = g;
-          if (g == static_cast<int>(chunk.groups.size())) chunk.keys.push_back(key);
-        }
-        if (g == static_cast<int>(chunk.groups.size())) chunk.groups.emplace_back();
-        Voxel& vox = chunk.groups[static_cast<size_t>(g)];
-        vox.sum += p;
-        vox.probability_sum += prob_row[u];
-        ++vox.count;
-        chunk.kept.push_back({i, g});
-      };
-      const int block = 16 * stride;
-      int u = 0;
-      for (; u + block <= cloud.width; u += block) {
-        int any = 0;
-        for (int k = 0; k < block; k += stride) any |= prob_row[u + k] > threshold;
-        if (!any) continue;
-        for (int k = 0; k < block; k += stride) visit(u + k);
+/// Pass 1 on row v of a chunk: its kept pixels, each added to its group.
+void scanRow(const SegmentInput& in, int v, Chunk& chunk, Scanner& scanner, LeftKey& left) {
+  const OrganizedCloud& cloud = in.cloud;
+  const int stride = in.stride;
+  const float* prob_row = in.probability.ptr<float>(v);
+  auto visit = [&](int u) {
+    const int i = v * cloud.width + u;
+    if (!(prob_row[u] > in.threshold) || !cloud.isValid(i)) return;
+    const Eigen::Vector3f& p = cloud.points[static_cast<size_t>(i)];
+    int g = static_cast<int>(chunk.groups.size());
+    if (in.inv_voxel > 0) {
+      const uint64_t key = packVoxelCell(voxelCell(p, in.inv_voxel));
+      if (key == left.key) {
+        g = left.group;
+      } else if (key == scanner.above_key[u]) {
+        g = scanner.above_group[u];
+      } else {
+        g = scanner.group_of_key.findOrAdd(key, g);
       }
-      for (; u < cloud.width; u += stride) visit(u);
+      left.key = scanner.above_key[u] = key;
+      left.group = scanner.above_group[u] = g;
+      if (g == static_cast<int>(chunk.groups.size())) chunk.keys.push_back(key);
     }
-    scanner.dirty = !chunk.kept.empty();
+    if (g == static_cast<int>(chunk.groups.size())) chunk.groups.emplace_back();
+    Voxel& vox = chunk.groups[static_cast<size_t>(g)];
+    vox.sum += p;
+    vox.probability_sum += prob_row[u];
+    ++vox.count;
+    chunk.kept.push_back({i, g});
   };
+  const int block = 16 * stride;
+  int u = 0;
+  for (; u + block <= cloud.width; u += block) {
+    int any = 0;
+    for (int k = 0; k < block; k += stride) any |= prob_row[u + k] > in.threshold;
+    if (!any) continue;
+    for (int k = 0; k < block; k += stride) visit(u + k);
+  }
+  for (; u < cloud.width; u += stride) visit(u);
+}
+
+/// Pass 1 on chunk c, with the memory of the thread that takes it.
+///
+/// The pixels above epsilon with depth, on every stride-th row and column, grouped by voxel (each
+/// pixel is its own group at voxel size 0) in image order, each group summed in that order. Most
+/// of an image is background, below epsilon: a block of 16 scanned pixels with none above it is
+/// skipped after 16 branch-free comparisons (a test and a branch per pixel cost 10 instructions,
+/// 3 M per 640x480 image, a fifth of the cat's soft segment). A voxel spans several pixels, so the
+/// key of the pixel to the left or above is usually the same: remembering their groups skips most
+/// hash lookups. A remembered key always maps to its group.
+void scanChunk(const SegmentInput& in, std::ptrdiff_t c, Chunk& chunk, Scanner& scanner) {
+  if (scanner.dirty) {
+    scanner.group_of_key.clear();
+    std::fill(scanner.above_key.begin(), scanner.above_key.end(), kNoKey);
+  }
+  LeftKey left;
+  const int from = static_cast<int>(c) * kChunkRows;
+  const int to = std::min(in.cloud.height, from + kChunkRows);
+  for (int v = (from + in.stride - 1) / in.stride * in.stride; v < to; v += in.stride) {
+    scanRow(in, v, chunk, scanner, left);
+  }
+  scanner.dirty = !chunk.kept.empty();
+}
+
+/// Pass 1 on every chunk, on `team` threads; rethrows the first exception of a thread.
+void scanChunks(const SegmentInput& in, std::vector<Chunk>& chunks, int team) {
+  std::vector<Scanner> scanners(static_cast<size_t>(team), Scanner(in.cloud.width));
+  const auto chunk_count = static_cast<std::ptrdiff_t>(chunks.size());
   std::exception_ptr error;
 #pragma omp parallel for num_threads(team) schedule(dynamic, 1)
   for (std::ptrdiff_t c = 0; c < chunk_count; ++c) {
     try {
-      scan(c, scanners[static_cast<size_t>(omp_get_thread_num())]);
+      scanChunk(in, c, chunks[static_cast<size_t>(c)],
+                scanners[static_cast<size_t>(omp_get_thread_num())]);
     } catch (...) {
 #pragma omp critical(stocs_soft_segment_error)
       if (!error) error = std::current_exception();
     }
   }
   if (error) std::rethrow_exception(error);
+}
 
-  // Pass 2, the chunks in image order: a voxel across chunks becomes one group of the segment,
-  // numbered in order of first pixel. Its sums go on from the earlier chunks' pixel by pixel, so
-  // that every sum is taken in image order whatever the chunks (a chunk's later voxels start in
-  // it, and voxels from earlier chunks end within a few rows of its top).
+/// Pass 2, the chunks in image order: a voxel across chunks becomes one group of the segment,
+/// numbered in order of first pixel (each chunk's `merged`). Its sums go on from the earlier
+/// chunks' pixel by pixel, so that every sum is taken in image order whatever the chunks (a
+/// chunk's later voxels start in it, and voxels from earlier chunks end within a few rows of its
+/// top).
+std::vector<Voxel> mergeChunks(const SegmentInput& in, std::vector<Chunk>& chunks) {
   size_t chunk_groups = 0;
   for (const Chunk& chunk : chunks) chunk_groups += chunk.groups.size();
   std::vector<Voxel> groups;
@@ -257,7 +289,7 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
     int pending = 0;  // pixels of groups begun in earlier chunks
     for (size_t l = 0; l < chunk.groups.size(); ++l) {
       const int next = static_cast<int>(groups.size());
-      const int g = inv > 0 ? group_of_key.findOrAdd(chunk.keys[l], next) : next;
+      const int g = in.inv_voxel > 0 ? group_of_key.findOrAdd(chunk.keys[l], next) : next;
       if (g == next) {
         groups.push_back(chunk.groups[l]);
       } else {
@@ -269,32 +301,68 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
     for (auto k = chunk.kept.begin(); pending > 0; ++k) {
       if (!continued[static_cast<size_t>(k->group)]) continue;
       Voxel& vox = groups[static_cast<size_t>(chunk.merged[static_cast<size_t>(k->group)])];
-      vox.sum += cloud.points[static_cast<size_t>(k->pixel)];
-      vox.probability_sum += probability.ptr<float>(k->pixel / cloud.width)[k->pixel % cloud.width];
+      vox.sum += in.cloud.points[static_cast<size_t>(k->pixel)];
+      vox.probability_sum +=
+          in.probability.ptr<float>(k->pixel / in.cloud.width)[k->pixel % in.cloud.width];
       ++vox.count;
       --pending;
     }
   }
+  return groups;
+}
 
-  // Pass 3, per chunk again: the representative of a group is its pixel nearest the centroid,
-  // which lies on the surface even when the centroid of a voxel straddling a depth edge does not.
-  // Each thread keeps its nearest per group, the first in image order of equals (a thread takes
-  // its chunks in increasing order); the threads' are merged with ties to the lower pixel index,
-  // as one scan in image order would.
+/// The centroid of each group.
+std::vector<Eigen::Vector3f> centroidsOf(const std::vector<Voxel>& groups) {
   std::vector<Eigen::Vector3f> centroids(groups.size());
   for (size_t g = 0; g < groups.size(); ++g) {
     centroids[g] = groups[g].sum / static_cast<float>(groups[g].count);
   }
-  std::vector<std::vector<float>> team_d2(
-      static_cast<size_t>(team),
-      std::vector<float>(groups.size(), std::numeric_limits<float>::max()));
-  std::vector<std::vector<int>> team_pixel(static_cast<size_t>(team),
-                                           std::vector<int>(groups.size(), -1));
-#pragma omp parallel num_threads(team)
+  return centroids;
+}
+
+/// Each thread's pixel nearest each group's centroid (-1 where it saw none), and its squared
+/// distance.
+struct TeamNearest {
+  std::vector<std::vector<float>> d2;
+  std::vector<std::vector<int>> pixel;
+};
+
+/// The threads' nearest pixels merged with ties to the lower pixel index, as one scan in image
+/// order would.
+std::vector<int> mergeNearest(TeamNearest& team) {
+  std::vector<int> representative = std::move(team.pixel.front());
+  std::vector<float>& nearest = team.d2.front();
+  for (size_t t = 1; t < team.d2.size(); ++t) {
+    for (size_t g = 0; g < representative.size(); ++g) {
+      const int pixel = team.pixel[t][g];
+      if (pixel < 0) continue;
+      if (team.d2[t][g] < nearest[g] ||
+          (team.d2[t][g] == nearest[g] && (representative[g] < 0 || pixel < representative[g]))) {
+        nearest[g] = team.d2[t][g];
+        representative[g] = pixel;
+      }
+    }
+  }
+  return representative;
+}
+
+/// Pass 3, per chunk again: the representative of a group is its pixel nearest the centroid,
+/// which lies on the surface even when the centroid of a voxel straddling a depth edge does not.
+/// Each thread keeps its nearest per group, the first in image order of equals (a thread takes its
+/// chunks in increasing order), and mergeNearest merges the threads'.
+std::vector<int> representatives(const OrganizedCloud& cloud, const std::vector<Chunk>& chunks,
+                                 const std::vector<Eigen::Vector3f>& centroids, int team_size) {
+  const auto team = static_cast<size_t>(team_size);
+  TeamNearest nearest{
+      std::vector<std::vector<float>>(
+          team, std::vector<float>(centroids.size(), std::numeric_limits<float>::max())),
+      std::vector<std::vector<int>>(team, std::vector<int>(centroids.size(), -1))};
+  const auto chunk_count = static_cast<std::ptrdiff_t>(chunks.size());
+#pragma omp parallel num_threads(team_size)
   {
     const auto t = static_cast<size_t>(omp_get_thread_num());
-    std::vector<float>& best_d2 = team_d2[t];
-    std::vector<int>& best = team_pixel[t];
+    std::vector<float>& best_d2 = nearest.d2[t];
+    std::vector<int>& best = nearest.pixel[t];
 #pragma omp for schedule(dynamic, 1)
     for (std::ptrdiff_t c = 0; c < chunk_count; ++c) {
       const Chunk& chunk = chunks[static_cast<size_t>(c)];
@@ -308,30 +376,30 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
       }
     }
   }
-  std::vector<int> representative = std::move(team_pixel.front());
-  std::vector<float>& nearest = team_d2.front();
-  for (size_t t = 1; t < team_d2.size(); ++t) {
-    for (size_t g = 0; g < groups.size(); ++g) {
-      const int pixel = team_pixel[t][g];
-      if (pixel < 0) continue;
-      if (team_d2[t][g] < nearest[g] ||
-          (team_d2[t][g] == nearest[g] && (representative[g] < 0 || pixel < representative[g]))) {
-        nearest[g] = team_d2[t][g];
-        representative[g] = pixel;
-      }
-    }
-  }
+  return mergeNearest(nearest);
+}
 
-  std::vector<Eigen::Vector3f> normals(groups.size());
-  const auto group_count = static_cast<std::ptrdiff_t>(groups.size());
+/// The normal at each group's representative pixel, on `threads` threads.
+std::vector<Eigen::Vector3f> normalsAt(const OrganizedCloud& cloud,
+                                       const std::vector<int>& representative, float focal_px,
+                                       const OrganizedNormalParams& params, int threads) {
+  std::vector<Eigen::Vector3f> normals(representative.size());
+  const auto group_count = static_cast<std::ptrdiff_t>(representative.size());
 #pragma omp parallel for num_threads(std::max(1, threads)) schedule(static)
   for (std::ptrdiff_t g = 0; g < group_count; ++g) {
-    normals[g] = organizedNormal(cloud, representative[g], focal_px, params.normals);
+    normals[g] = organizedNormal(cloud, representative[g], focal_px, params);
   }
+  return normals;
+}
 
+/// The segment of the groups with a normal, in group order (order of first pixel: deterministic).
+SoftSegment assembleSegment(const std::vector<Voxel>& groups,
+                            const std::vector<Eigen::Vector3f>& centroids,
+                            const std::vector<Eigen::Vector3f>& normals,
+                            const std::vector<int>& representative) {
   SoftSegment segment;
   double total = 0;
-  for (size_t g = 0; g < groups.size(); ++g) {  // groups are in order of first pixel: deterministic
+  for (size_t g = 0; g < groups.size(); ++g) {
     const Eigen::Vector3f& normal = normals[g];
     if (!normal.allFinite()) continue;
     const Voxel& vox = groups[g];
@@ -344,6 +412,26 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
   segment.probability.reserve(segment.size());
   for (float c : segment.confidence) segment.probability.push_back(static_cast<float>(c / total));
   return segment;
+}
+
+}  // namespace
+
+SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
+                             float focal_px, const SoftSegmentParams& params, int threads) {
+  params.validate();
+  checkSegmentInputs(cloud, probability, focal_px);
+  const SegmentInput in{
+      cloud, probability, segmentPixelStride(cloud, probability, focal_px, params),
+      params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f, params.min_probability};
+  std::vector<Chunk> chunks(static_cast<size_t>((cloud.height + kChunkRows - 1) / kChunkRows));
+  const int team = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(1, chunks.size())));
+  scanChunks(in, chunks, team);
+  const std::vector<Voxel> groups = mergeChunks(in, chunks);
+  const std::vector<Eigen::Vector3f> centroids = centroidsOf(groups);
+  const std::vector<int> representative = representatives(cloud, chunks, centroids, team);
+  return assembleSegment(groups, centroids,
+                         normalsAt(cloud, representative, focal_px, params.normals, threads),
+                         representative);
 }
 
 void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height) {

@@ -96,13 +96,127 @@ struct PlyElement {
   std::vector<std::vector<std::string>> properties;  // the words after `property`
 };
 
+/// The error for model file `path` failing a check.
+InputError modelError(const std::string& path, const std::string& why) {
+  return InputError(fmt::format("model {}: {}", path, why));
+}
+
+/// The values of a PCD header's keywords (the words after each), every keyword a known one given
+/// once, and those PCL needs present.
+class PcdKeywords {
+ public:
+  PcdKeywords(const std::string& path, const Header& h) {
+    for (size_t i = 0; i < h.lines.size(); ++i) {
+      // PCL's reader dereferences null for binary data behind blank or indented header lines
+      // (found by fuzz_pcd_model).
+      const std::string& raw = h.raw_lines[i];
+      if (raw.empty() || raw[0] == ' ' || raw[0] == '\t') {
+        throw modelError(path, fmt::format("PCD header line {} is blank or indented", i + 1));
+      }
+      const std::vector<std::string>& w = h.lines[i];
+      if (w[0][0] == '#') continue;
+      static const char* const kKeywords[] = {"VERSION", "FIELDS", "SIZE",      "TYPE",   "COUNT",
+                                              "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+      if (std::find(std::begin(kKeywords), std::end(kKeywords), w[0]) == std::end(kKeywords)) {
+        throw modelError(path, fmt::format("unknown PCD header keyword '{}'", w[0]));
+      }
+      if (!values_.emplace(w[0], std::vector<std::string>(w.begin() + 1, w.end())).second) {
+        throw modelError(path, fmt::format("PCD header repeats '{}'", w[0]));
+      }
+    }
+    for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "HEIGHT", "POINTS"}) {
+      if (!values_.count(required)) {
+        throw modelError(path, fmt::format("PCD header lacks '{}'", required));
+      }
+    }
+  }
+
+  /// The words after `keyword`; none when the header lacks it.
+  const std::vector<std::string>& operator[](const std::string& keyword) const {
+    static const std::vector<std::string> kNone;
+    const auto it = values_.find(keyword);
+    return it == values_.end() ? kNone : it->second;
+  }
+
+ private:
+  std::map<std::string, std::vector<std::string>> values_;
+};
+
+/// Bytes of one binary point: FIELDS, SIZE, TYPE and COUNT (1 each when absent) of one length,
+/// each field of a PCD size and type with a COUNT of at least 1.
+uint64_t pcdPointBytes(const std::string& path, const PcdKeywords& values) {
+  const std::vector<std::string>& names = values["FIELDS"];
+  const std::vector<std::string>& sizes = values["SIZE"];
+  const std::vector<std::string>& types = values["TYPE"];
+  const size_t fields = names.size();
+  std::vector<std::string> counts = values["COUNT"];
+  if (counts.empty()) counts.assign(fields, "1");
+  if (fields == 0 || sizes.size() != fields || types.size() != fields || counts.size() != fields) {
+    throw modelError(path, "PCD FIELDS, SIZE, TYPE and COUNT differ in length");
+  }
+  uint64_t point_bytes = 0;
+  for (size_t f = 0; f < fields; ++f) {
+    const std::string& size = sizes[f];
+    const std::string& type = types[f];
+    const bool valid_size = size == "1" || size == "2" || size == "4" || size == "8";
+    if (!valid_size || (type != "I" && type != "U" && type != "F") ||
+        (type == "F" && size != "4" && size != "8")) {
+      throw modelError(path,
+                       fmt::format("PCD field '{}' has size {} and type {}", names[f], size, type));
+    }
+    // COUNT 0 makes PCL compute a negative field size (found by fuzz_pcd_model).
+    const uint64_t count = parseCount(path, "PCD COUNT", counts[f], 1 << 20);
+    if (count == 0) throw modelError(path, fmt::format("PCD field '{}' has COUNT 0", names[f]));
+    point_bytes += std::stoull(size) * count;
+  }
+  return point_bytes;
+}
+
+/// The count after `keyword` (POINTS, WIDTH or HEIGHT), which must be a single number.
+uint64_t pcdNumber(const std::string& path, const PcdKeywords& values, const char* keyword) {
+  const std::vector<std::string>& words = values[keyword];
+  if (words.size() != 1) throw modelError(path, fmt::format("PCD {} must be one number", keyword));
+  return parseCount(path, fmt::format("PCD {}", keyword), words[0], kMaxElements);
+}
+
+/// The fewest body bytes that hold `points` points of DATA `kind`.
+uint64_t pcdBodyBytes(const std::string& path, const std::string& kind, uint64_t points,
+                      size_t fields, uint64_t point_bytes) {
+  if (kind == "ascii") return points * fields * 2 - 1;  // a digit and a separator per value
+  if (kind == "binary") return points * point_bytes;
+  // binary_compressed: the compressed and uncompressed sizes; PCL checks the rest.
+  if (kind == "binary_compressed") return 8;
+  throw modelError(path, "PCD DATA must be ascii, binary or binary_compressed");
+}
+
+/// Rejects a body whose first line PCL would take for more header.
+void checkPcdBodyStart(const std::string& path, const std::string& kind,
+                       const std::string& body_start) {
+  // PCL's header parser goes on reading lines after DATA while they start with a header keyword,
+  // so data that happens to begin like one (after empty lines, which it skips) is parsed as
+  // header and crashes it: binary data, and ascii data such as a second "DATA" line without a
+  // kind (both found by fuzz_pcd_model).
+  std::istringstream body(body_start);
+  std::string line;
+  while (std::getline(body, line) && line.empty()) {
+  }
+  std::istringstream words(line);
+  std::string first;
+  words >> first;
+  static const char* const kPrefixes[] = {"#",      "VERSION", "FIELDS",    "COLUMNS",
+                                          "SIZE",   "TYPE",    "COUNT",     "WIDTH",
+                                          "HEIGHT", "POINTS",  "VIEWPOINT", "DATA"};
+  for (const char* prefix : kPrefixes) {
+    if (first.rfind(prefix, 0) == 0) {
+      throw modelError(path,
+                       fmt::format("PCD {} data begins like the header line '{}'", kind, prefix));
+    }
+  }
+}
 }  // namespace
 
 void checkPlyHeader(const std::string& path) {
   const Header h = readHeader(path, "end_header", "ply");
-  const auto fail = [&](const std::string& why) {
-    return InputError(fmt::format("model {}: {}", path, why));
-  };
   std::string format;
   std::vector<PlyElement> elements;
   for (size_t i = 1; i + 1 < h.lines.size(); ++i) {
@@ -116,20 +230,21 @@ void checkPlyHeader(const std::string& path) {
     } else if (w[0] == "property" && !elements.empty()) {
       elements.back().properties.emplace_back(w.begin() + 1, w.end());
     } else {
-      throw fail(fmt::format("header line {} ('{}') is not valid here", i + 1, w[0]));
+      throw modelError(path, fmt::format("header line {} ('{}') is not valid here", i + 1, w[0]));
     }
   }
-  if (format.empty()) throw fail("header has no valid 'format' line");
-  if (elements.empty() || elements[0].name != "vertex") throw fail("first element is not 'vertex'");
-  if (elements[0].count == 0) throw fail("no vertices");
+  if (format.empty()) throw modelError(path, "header has no valid 'format' line");
+  if (elements.empty() || elements[0].name != "vertex")
+    throw modelError(path, "first element is not 'vertex'");
+  if (elements[0].count == 0) throw modelError(path, "no vertices");
   if (elements.size() > 2 || (elements.size() == 2 && elements[1].name != "face")) {
-    throw fail("only 'vertex' and 'face' elements are supported");
+    throw modelError(path, "only 'vertex' and 'face' elements are supported");
   }
-  if (elements[0].properties.empty()) throw fail("vertices have no properties");
+  if (elements[0].properties.empty()) throw modelError(path, "vertices have no properties");
   size_t vertex_bytes = 0;
   for (const auto& p : elements[0].properties) {
     if (p.size() != 2 || plyTypeSize(p[0]) == 0) {
-      throw fail("vertex properties must be single values of a PLY scalar type");
+      throw modelError(path, "vertex properties must be single values of a PLY scalar type");
     }
     vertex_bytes += plyTypeSize(p[0]);
   }
@@ -143,7 +258,7 @@ void checkPlyHeader(const std::string& path) {
         (p[0][1] != "uchar" && p[0][1] != "uint8") ||
         (p[0][2] != "int" && p[0][2] != "uint" && p[0][2] != "int32" && p[0][2] != "uint32") ||
         (p[0][3] != "vertex_indices" && p[0][3] != "vertex_index")) {
-      throw fail("faces must have one property 'list uchar int vertex_indices'");
+      throw modelError(path, "faces must have one property 'list uchar int vertex_indices'");
     }
     face_min_bytes = elements[1].count;  // the count byte of each face
   }
@@ -152,102 +267,29 @@ void checkPlyHeader(const std::string& path) {
                               ? elements[0].count * elements[0].properties.size() * 2 - 1
                               : elements[0].count * vertex_bytes + face_min_bytes;
   if (h.body_bytes < needed) {
-    throw fail(fmt::format("{} vertices need at least {} bytes of data, the file has {}",
-                           elements[0].count, needed, h.body_bytes));
+    throw modelError(path,
+                     fmt::format("{} vertices need at least {} bytes of data, the file has {}",
+                                 elements[0].count, needed, h.body_bytes));
   }
 }
 
 void checkPcdHeader(const std::string& path) {
   const Header h = readHeader(path, "DATA");
-  const auto fail = [&](const std::string& why) {
-    return InputError(fmt::format("model {}: {}", path, why));
-  };
-  std::map<std::string, std::vector<std::string>> values;
-  for (size_t i = 0; i < h.lines.size(); ++i) {
-    // PCL's reader dereferences null for binary data behind blank or indented header lines
-    // (found by fuzz_pcd_model).
-    const std::string& raw = h.raw_lines[i];
-    if (raw.empty() || raw[0] == ' ' || raw[0] == '\t') {
-      throw fail(fmt::format("PCD header line {} is blank or indented", i + 1));
-    }
-    const std::vector<std::string>& w = h.lines[i];
-    if (w[0][0] == '#') continue;
-    static const char* const kKeywords[] = {"VERSION", "FIELDS", "SIZE",      "TYPE",   "COUNT",
-                                            "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
-    if (std::find(std::begin(kKeywords), std::end(kKeywords), w[0]) == std::end(kKeywords)) {
-      throw fail(fmt::format("unknown PCD header keyword '{}'", w[0]));
-    }
-    if (!values.emplace(w[0], std::vector<std::string>(w.begin() + 1, w.end())).second) {
-      throw fail(fmt::format("PCD header repeats '{}'", w[0]));
-    }
+  const PcdKeywords values(path, h);
+  const uint64_t point_bytes = pcdPointBytes(path, values);
+  const uint64_t points = pcdNumber(path, values, "POINTS");
+  if (points == 0) throw modelError(path, "no vertices");
+  if (pcdNumber(path, values, "WIDTH") * pcdNumber(path, values, "HEIGHT") != points) {
+    throw modelError(path, "PCD WIDTH x HEIGHT is not POINTS");
   }
-  for (const char* required : {"FIELDS", "SIZE", "TYPE", "WIDTH", "HEIGHT", "POINTS"}) {
-    if (!values.count(required)) throw fail(fmt::format("PCD header lacks '{}'", required));
-  }
-  const size_t fields = values["FIELDS"].size();
-  std::vector<std::string> counts = values["COUNT"];
-  if (counts.empty()) counts.assign(fields, "1");
-  if (fields == 0 || values["SIZE"].size() != fields || values["TYPE"].size() != fields ||
-      counts.size() != fields) {
-    throw fail("PCD FIELDS, SIZE, TYPE and COUNT differ in length");
-  }
-  uint64_t point_bytes = 0;
-  for (size_t f = 0; f < fields; ++f) {
-    const std::string& size = values["SIZE"][f];
-    const std::string& type = values["TYPE"][f];
-    const bool valid_size = size == "1" || size == "2" || size == "4" || size == "8";
-    if (!valid_size || (type != "I" && type != "U" && type != "F") ||
-        (type == "F" && size != "4" && size != "8")) {
-      throw fail(
-          fmt::format("PCD field '{}' has size {} and type {}", values["FIELDS"][f], size, type));
-    }
-    // COUNT 0 makes PCL compute a negative field size (found by fuzz_pcd_model).
-    const uint64_t count = parseCount(path, "PCD COUNT", counts[f], 1 << 20);
-    if (count == 0) throw fail(fmt::format("PCD field '{}' has COUNT 0", values["FIELDS"][f]));
-    point_bytes += std::stoull(size) * count;
-  }
-  const auto single = [&](const char* key) {
-    if (values[key].size() != 1) throw fail(fmt::format("PCD {} must be one number", key));
-    return parseCount(path, fmt::format("PCD {}", key), values[key][0], kMaxElements);
-  };
-  const uint64_t points = single("POINTS");
-  if (points == 0) throw fail("no vertices");
-  if (single("WIDTH") * single("HEIGHT") != points) throw fail("PCD WIDTH x HEIGHT is not POINTS");
   const std::vector<std::string>& data = values["DATA"];
   const std::string kind = data.size() == 1 ? data[0] : "";
-  uint64_t needed = 0;
-  if (kind == "ascii") {
-    needed = points * fields * 2 - 1;  // a digit and a separator per value
-  } else if (kind == "binary") {
-    needed = points * point_bytes;
-  } else if (kind == "binary_compressed") {
-    needed = 8;  // compressed and uncompressed sizes; PCL checks the rest
-  } else {
-    throw fail("PCD DATA must be ascii, binary or binary_compressed");
-  }
+  const uint64_t needed = pcdBodyBytes(path, kind, points, values["FIELDS"].size(), point_bytes);
   if (h.body_bytes < needed) {
-    throw fail(fmt::format("{} points need at least {} bytes of data, the file has {}", points,
-                           needed, h.body_bytes));
+    throw modelError(path, fmt::format("{} points need at least {} bytes of data, the file has {}",
+                                       points, needed, h.body_bytes));
   }
-  // PCL's header parser goes on reading lines after DATA while they start with a header keyword,
-  // so data that happens to begin like one (after empty lines, which it skips) is parsed as
-  // header and crashes it: binary data, and ascii data such as a second "DATA" line without a
-  // kind (both found by fuzz_pcd_model).
-  std::istringstream body(h.body_start);
-  std::string line;
-  while (std::getline(body, line) && line.empty()) {
-  }
-  std::istringstream words(line);
-  std::string first;
-  words >> first;
-  static const char* const kPrefixes[] = {"#",      "VERSION", "FIELDS",    "COLUMNS",
-                                          "SIZE",   "TYPE",    "COUNT",     "WIDTH",
-                                          "HEIGHT", "POINTS",  "VIEWPOINT", "DATA"};
-  for (const char* prefix : kPrefixes) {
-    if (first.rfind(prefix, 0) == 0) {
-      throw fail(fmt::format("PCD {} data begins like the header line '{}'", kind, prefix));
-    }
-  }
+  checkPcdBodyStart(path, kind, h.body_start);
 }
 
 }  // namespace stocs::detail

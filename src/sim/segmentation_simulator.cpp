@@ -93,6 +93,159 @@ cv::Mat softAbove(const cv::Mat& field, float threshold) {
   return cv::min(cv::max(gate, 0.0f), 1.0f);
 }
 
+/// Throws InputError for a label image that is not a non-empty CV_32SC1 image, or an RGB image of
+/// another type or size.
+void checkScene(const SegmentationScene& scene) {
+  const cv::Mat& labels = scene.labels;
+  if (labels.empty() || labels.type() != CV_32SC1) {
+    throw InputError("segmentation simulator: the label image must be a non-empty CV_32SC1 image");
+  }
+  if (!scene.rgb.empty() && (scene.rgb.type() != CV_8UC3 || scene.rgb.size() != labels.size())) {
+    throw InputError(fmt::format(
+        "segmentation simulator: the RGB image must be CV_8UC3 of {}x{} like the labels; it is "
+        "{}x{} with {} channels",
+        labels.cols, labels.rows, scene.rgb.cols, scene.rgb.rows, scene.rgb.channels()));
+  }
+}
+
+/// The pixels of the target object and those of the other objects (255, else 0).
+struct SceneMasks {
+  cv::Mat target, other;
+};
+
+/// The masks of a scene; throws InputError for a label without an object id.
+SceneMasks sceneMasks(const SegmentationScene& scene, int target_obj_id) {
+  const cv::Mat& labels = scene.labels;
+  const cv::Size size = labels.size();
+  SceneMasks masks{cv::Mat(size, CV_8UC1, cv::Scalar(0)), cv::Mat(size, CV_8UC1, cv::Scalar(0))};
+  for (int v = 0; v < size.height; ++v) {
+    for (int u = 0; u < size.width; ++u) {
+      const int l = labels.at<int>(v, u);
+      if (l == 0) continue;
+      if (l < 0 || l > static_cast<int>(scene.obj_ids.size())) {
+        throw InputError(fmt::format(
+            "segmentation simulator: label {} at pixel (u={}, v={}) has no object id ({} given)", l,
+            u, v, scene.obj_ids.size()));
+      }
+      (scene.obj_ids[l - 1] == target_obj_id ? masks.target : masks.other).at<uint8_t>(v, u) = 255;
+    }
+  }
+  return masks;
+}
+
+/// The random draws of one seed: shares and smooth fields.
+struct RandomLayout {
+  float missed_share, neighbour_share;
+  cv::Mat bleed_field, missed_field, neighbour_field, lookalike_field, noise_field;
+};
+
+/// The layout of `seed`. Every random field is drawn whatever the parameters, so that all presets
+/// share one random layout for a seed and a noisier preset only grows the same missed and
+/// false-positive regions.
+RandomLayout drawLayout(cv::Size size, const SegmentationNoiseParams& params, uint64_t seed) {
+  cv::RNG rng(seed);
+  RandomLayout layout;
+  // One statement per draw: the order of the draws is the layout.
+  layout.missed_share = params.missed_fraction * rng.uniform(0.5f, 1.5f);
+  layout.neighbour_share = params.neighbour_fraction * rng.uniform(0.5f, 1.5f);
+  layout.bleed_field = smoothField(size, 2 * params.blob_px, rng);
+  layout.missed_field = smoothField(size, params.blob_px, rng);
+  layout.neighbour_field = smoothField(size, params.blob_px, rng);
+  layout.lookalike_field = smoothField(size, 1.5f * params.blob_px, rng);
+  layout.noise_field = smoothField(size, 3, rng);
+  return layout;
+}
+
+/// The object as found, bleeding over its outline by an amount that varies along it, at the
+/// preset's confidence, with its missed regions.
+cv::Mat foundObject(const cv::Mat& target, const RandomLayout& layout,
+                    const SegmentationNoiseParams& params) {
+  cv::Mat found;
+  target.convertTo(found, CV_32F, 1.0 / 255);
+  if (params.bleed_px > 0) {
+    cv::Mat spread;
+    cv::GaussianBlur(found, spread, cv::Size(0, 0), params.bleed_px);
+    const cv::Mat reach = cv::min(cv::max(0.75f + 0.35f * layout.bleed_field, 0.2f), 1.0f);
+    found = cv::max(found, cv::min(2.0f * spread, 1.0f).mul(reach));
+  }
+  found *= params.confidence;
+  // Missed regions, which also stop the bleeding next to them.
+  const cv::Mat missed = softAbove(layout.missed_field,
+                                   upperQuantile(layout.missed_field, target, layout.missed_share));
+  return found.mul(1.0f - missed) + cv::min(found, params.missed_level).mul(missed);
+}
+
+/// The other objects' pixels of the instances that come within 2 blob sizes of the target (255,
+/// else 0), by the pixels' distance to the target.
+cv::Mat nearbyInstances(const SegmentationScene& scene, const cv::Mat& other,
+                        const cv::Mat& distance, float blob_px) {
+  const cv::Mat& labels = scene.labels;
+  const cv::Size size = labels.size();
+  // Nearest distance of each instance to the target, pixels.
+  std::vector<float> nearest(scene.obj_ids.size() + 1, std::numeric_limits<float>::infinity());
+  for (int v = 0; v < size.height; ++v) {
+    for (int u = 0; u < size.width; ++u) {
+      if (!other.at<uint8_t>(v, u)) continue;
+      float& d = nearest[labels.at<int>(v, u)];
+      d = std::min(d, distance.at<float>(v, u));
+    }
+  }
+  cv::Mat neighbours(size, CV_8UC1, cv::Scalar(0));
+  for (int v = 0; v < size.height; ++v) {
+    for (int u = 0; u < size.width; ++u) {
+      const int l = labels.at<int>(v, u);
+      if (other.at<uint8_t>(v, u) && nearest[l] < 2 * blob_px) neighbours.at<uint8_t>(v, u) = 255;
+    }
+  }
+  return neighbours;
+}
+
+/// Confident false positives on other objects near the target, most likely next to it (0 to 1).
+cv::Mat neighbourFiring(const SegmentationScene& scene, const SceneMasks& masks,
+                        const RandomLayout& layout, const SegmentationNoiseParams& params) {
+  cv::Mat distance;
+  cv::distanceTransform(masks.target == 0, distance, cv::DIST_L2, 3);
+  const cv::Mat neighbours = nearbyInstances(scene, masks.other, distance, params.blob_px);
+  const cv::Mat toward_target = layout.neighbour_field - distance / (2 * params.blob_px);
+  cv::Mat false_positive =
+      softAbove(toward_target, upperQuantile(toward_target, neighbours, layout.neighbour_share));
+  false_positive.setTo(0, neighbours == 0);
+  return false_positive;
+}
+
+/// How much each pixel off the target looks like it (0 to 1): by colour similarity with an RGB
+/// image, else 1 on the background.
+cv::Mat lookalikeLevel(const SegmentationScene& scene, const cv::Mat& target,
+                       float colour_tolerance) {
+  const cv::Size size = scene.labels.size();
+  cv::Mat lookalike(size, CV_32F, cv::Scalar(0));
+  const cv::Scalar target_colour = scene.rgb.empty() ? cv::Scalar() : cv::mean(scene.rgb, target);
+  for (int v = 0; v < size.height; ++v) {
+    for (int u = 0; u < size.width; ++u) {
+      if (target.at<uint8_t>(v, u)) continue;
+      if (scene.rgb.empty()) {
+        lookalike.at<float>(v, u) = scene.labels.at<int>(v, u) == 0 ? 1.0f : 0.0f;
+        continue;
+      }
+      const cv::Vec3b c = scene.rgb.at<cv::Vec3b>(v, u);
+      double d2 = 0;
+      for (int k = 0; k < 3; ++k) d2 += (c[k] - target_colour[k]) * (c[k] - target_colour[k]);
+      lookalike.at<float>(v, u) =
+          static_cast<float>(std::exp(-d2 / (2.0 * colour_tolerance * colour_tolerance)));
+    }
+  }
+  return lookalike;
+}
+
+/// False positives on pixels that look like the target, in the look-alike field's regions.
+cv::Mat lookalikeFiring(const SegmentationScene& scene, const cv::Mat& target,
+                        const RandomLayout& layout, const SegmentationNoiseParams& params) {
+  const cv::Mat everywhere(scene.labels.size(), CV_8UC1, cv::Scalar(255));
+  return lookalikeLevel(scene, target, params.colour_tolerance)
+      .mul(softAbove(layout.lookalike_field,
+                     upperQuantile(layout.lookalike_field, everywhere, params.lookalike_fraction)));
+}
+
 }  // namespace
 
 void SegmentationNoiseParams::validate() const {
@@ -128,106 +281,15 @@ SegmentationNoiseParams segmentationPreset(const std::string& name) {
 cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
                              const SegmentationNoiseParams& params, uint64_t seed) {
   params.validate();
-  const cv::Mat& labels = scene.labels;
-  if (labels.empty() || labels.type() != CV_32SC1) {
-    throw InputError("segmentation simulator: the label image must be a non-empty CV_32SC1 image");
-  }
-  if (!scene.rgb.empty() && (scene.rgb.type() != CV_8UC3 || scene.rgb.size() != labels.size())) {
-    throw InputError(fmt::format(
-        "segmentation simulator: the RGB image must be CV_8UC3 of {}x{} like the labels; it is "
-        "{}x{} "
-        "with {} channels",
-        labels.cols, labels.rows, scene.rgb.cols, scene.rgb.rows, scene.rgb.channels()));
-  }
-  const cv::Size size = labels.size();
-  cv::Mat target(size, CV_8UC1, cv::Scalar(0)), other(size, CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < size.height; ++v) {
-    for (int u = 0; u < size.width; ++u) {
-      const int l = labels.at<int>(v, u);
-      if (l == 0) continue;
-      if (l < 0 || l > static_cast<int>(scene.obj_ids.size())) {
-        throw InputError(fmt::format(
-            "segmentation simulator: label {} at pixel (u={}, v={}) has no object id ({} given)", l,
-            u, v, scene.obj_ids.size()));
-      }
-      (scene.obj_ids[l - 1] == target_obj_id ? target : other).at<uint8_t>(v, u) = 255;
-    }
-  }
-
-  // Every random field is drawn whatever the parameters, so that all presets share one random
-  // layout for a seed and a noisier preset only grows the same missed and false-positive regions.
-  cv::RNG rng(seed);
-  const float missed_share = params.missed_fraction * rng.uniform(0.5f, 1.5f);
-  const float neighbour_share = params.neighbour_fraction * rng.uniform(0.5f, 1.5f);
-  const cv::Mat bleed_field = smoothField(size, 2 * params.blob_px, rng);
-  const cv::Mat missed_field = smoothField(size, params.blob_px, rng);
-  const cv::Mat neighbour_field = smoothField(size, params.blob_px, rng);
-  const cv::Mat lookalike_field = smoothField(size, 1.5f * params.blob_px, rng);
-  const cv::Mat noise_field = smoothField(size, 3, rng);
-
-  // The object as found, bleeding over its outline by an amount that varies along it.
-  cv::Mat found;
-  target.convertTo(found, CV_32F, 1.0 / 255);
-  if (params.bleed_px > 0) {
-    cv::Mat spread;
-    cv::GaussianBlur(found, spread, cv::Size(0, 0), params.bleed_px);
-    const cv::Mat reach = cv::min(cv::max(0.75f + 0.35f * bleed_field, 0.2f), 1.0f);
-    found = cv::max(found, cv::min(2.0f * spread, 1.0f).mul(reach));
-  }
-  found *= params.confidence;
-  // Missed regions, which also stop the bleeding next to them.
-  const cv::Mat missed = softAbove(missed_field, upperQuantile(missed_field, target, missed_share));
-  found = found.mul(1.0f - missed) + cv::min(found, params.missed_level).mul(missed);
-
-  // Confident false positives on other objects near the target, most likely next to it.
-  cv::Mat distance;
-  cv::distanceTransform(target == 0, distance, cv::DIST_L2, 3);
-  // Nearest distance of each instance to the target, pixels.
-  std::vector<float> nearest(scene.obj_ids.size() + 1, std::numeric_limits<float>::infinity());
-  for (int v = 0; v < size.height; ++v) {
-    for (int u = 0; u < size.width; ++u) {
-      if (!other.at<uint8_t>(v, u)) continue;
-      float& d = nearest[labels.at<int>(v, u)];
-      d = std::min(d, distance.at<float>(v, u));
-    }
-  }
-  cv::Mat neighbours(size, CV_8UC1, cv::Scalar(0));
-  for (int v = 0; v < size.height; ++v) {
-    for (int u = 0; u < size.width; ++u) {
-      const int l = labels.at<int>(v, u);
-      if (other.at<uint8_t>(v, u) && nearest[l] < 2 * params.blob_px)
-        neighbours.at<uint8_t>(v, u) = 255;
-    }
-  }
-  const cv::Mat toward_target = neighbour_field - distance / (2 * params.blob_px);
-  cv::Mat false_positive =
-      softAbove(toward_target, upperQuantile(toward_target, neighbours, neighbour_share));
-  false_positive.setTo(0, neighbours == 0);
-
-  // Pixels that look like the target: by colour similarity with an RGB image, else background.
-  cv::Mat lookalike(size, CV_32F, cv::Scalar(0));
-  const cv::Scalar target_colour = scene.rgb.empty() ? cv::Scalar() : cv::mean(scene.rgb, target);
-  for (int v = 0; v < size.height; ++v) {
-    for (int u = 0; u < size.width; ++u) {
-      if (target.at<uint8_t>(v, u)) continue;
-      if (scene.rgb.empty()) {
-        lookalike.at<float>(v, u) = labels.at<int>(v, u) == 0 ? 1.0f : 0.0f;
-        continue;
-      }
-      const cv::Vec3b c = scene.rgb.at<cv::Vec3b>(v, u);
-      double d2 = 0;
-      for (int k = 0; k < 3; ++k) d2 += (c[k] - target_colour[k]) * (c[k] - target_colour[k]);
-      lookalike.at<float>(v, u) = static_cast<float>(
-          std::exp(-d2 / (2.0 * params.colour_tolerance * params.colour_tolerance)));
-    }
-  }
-  const cv::Mat everywhere(size, CV_8UC1, cv::Scalar(255));
-  lookalike = lookalike.mul(softAbove(
-      lookalike_field, upperQuantile(lookalike_field, everywhere, params.lookalike_fraction)));
-
+  checkScene(scene);
+  const SceneMasks masks = sceneMasks(scene, target_obj_id);
+  const RandomLayout layout = drawLayout(scene.labels.size(), params, seed);
+  const cv::Mat found = foundObject(masks.target, layout, params);
+  const cv::Mat false_positive = neighbourFiring(scene, masks, layout, params);
+  const cv::Mat lookalike = lookalikeFiring(scene, masks.target, layout, params);
   cv::Mat probability =
       cv::max(found, params.false_positive_level * cv::max(false_positive, lookalike));
-  probability += params.noise * noise_field;
+  probability += params.noise * layout.noise_field;
   return cv::min(cv::max(probability, 0.0f), 1.0f);
 }
 

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <set>
+#include <utility>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/mesh_io.h"
@@ -112,6 +114,149 @@ BopGtInfo visibility(const cv::Mat& labels, int label, long silhouette_pixels) {
   return info;
 }
 
+/// Creates `root` and its test/ folder; throws InputError when `root` holds files or cannot be
+/// made.
+void createDatasetRoot(const fs::path& root) {
+  std::error_code ec;
+  if (fs::exists(root, ec) && !fs::is_empty(root, ec)) {
+    throw InputError(fmt::format("synth: {} exists and is not empty", root.string()));
+  }
+  fs::create_directories(root / "test", ec);
+  if (ec) {
+    throw InputError(fmt::format("synth: cannot create {}: {}", root.string(), ec.message()));
+  }
+}
+
+/// The dataset's models by id, in metres; throws InputError when its models_info.json lists none.
+std::vector<std::pair<int, MeshData>> loadModels(const BopDataset& dataset, const fs::path& root) {
+  std::vector<std::pair<int, MeshData>> models;
+  for (const auto& [id, info] : dataset.modelsInfo()) {
+    models.emplace_back(id, loadMesh(dataset.modelPath(id).string(), 0.001f));
+  }
+  if (models.empty()) {
+    throw InputError(
+        fmt::format("synth: {} lists no models", (root / "models" / "models_info.json").string()));
+  }
+  return models;
+}
+
+/// The object id of each placed object (distractors are 0: never a target).
+std::vector<int> objectIds(const std::vector<PlacedObject>& objects) {
+  std::vector<int> ids;
+  for (const PlacedObject& o : objects) ids.push_back(o.obj_id);
+  return ids;
+}
+
+/// The camera of every image: the intrinsics and the depth scale.
+BopFrameCamera bopCamera(const SyntheticDatasetParams& params) {
+  BopFrameCamera camera;
+  camera.K << params.camera.fx, 0, params.camera.cx, 0, params.camera.fy, params.camera.cy, 0, 0, 1;
+  camera.depth_scale = params.depth_scale;
+  return camera;
+}
+
+/// Writes the scenes of a dataset whose models are in place: each scene's images and JSON files.
+class SceneWriter {
+ public:
+  SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
+              std::vector<std::pair<int, MeshData>> models,
+              const std::function<void(const SyntheticImageReport&)>& progress)
+      : dataset_(dataset),
+        params_(params),
+        models_(std::move(models)),
+        segmentation_(segmentationPreset(params.segmentation_preset)),
+        noise_(params.depth_noise.atLevel(params.depth_noise_level)),
+        camera_(bopCamera(params)),
+        progress_(progress) {}
+
+  /// Arranges scene `scene` from its own random stream, writes its images and then its
+  /// scene_camera, scene_gt and scene_gt_info files.
+  void writeScene(int scene) const {
+    Rng rng(streamSeed(params_.seed, static_cast<uint64_t>(scene)));
+    const std::vector<PlacedObject> objects = arrangeObjects(models_, params_.layout, rng);
+    const std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
+    SceneRecords records;
+    for (int im = 0; im < params_.images_per_scene; ++im) {
+      const auto start = std::chrono::steady_clock::now();
+      const Eigen::Isometry3f camera_pose = randomCameraPose(params_.layout, rng);
+      writeView(scene, im, objects, colours, camera_pose, records);
+      if (progress_) {
+        progress_(
+            {scene, im, static_cast<int>(records.gt[im].size()),
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+      }
+    }
+    const fs::path dir = dataset_.sceneDir(scene);
+    writeSceneCameras(dir / "scene_camera.json", records.cameras);
+    writeSceneGroundTruth(dir / "scene_gt.json", records.gt);
+    writeSceneGtInfo(dir / "scene_gt_info.json", records.gt_info);
+  }
+
+ private:
+  /// What a scene's JSON files hold, by image id.
+  struct SceneRecords {
+    std::map<int, BopFrameCamera> cameras;
+    std::map<int, std::vector<BopGtInstance>> gt;
+    std::map<int, std::vector<BopGtInfo>> gt_info;
+  };
+
+  /// Renders image `im` of a scene from `camera_pose`, writes its images and records its camera
+  /// and ground truth.
+  void writeView(int scene, int im, const std::vector<PlacedObject>& objects,
+                 const std::vector<cv::Vec3b>& colours, const Eigen::Isometry3f& camera_pose,
+                 SceneRecords& records) const {
+    const uint64_t image_seed =
+        streamSeed(params_.seed, (static_cast<uint64_t>(scene + 1) << 32) + im);
+    const SyntheticFrame frame =
+        renderSyntheticFrame(objects, colours, camera_pose, params_.camera, noise_, image_seed);
+    const std::set<int> present =
+        writeInstances(dataset_.sceneDir(scene), im, frame, objects, camera_pose, records);
+    const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};
+    for (int obj : present) {
+      const cv::Mat probability =
+          simulateSegmentation(seen, obj, segmentation_, streamSeed(image_seed, obj + 2));
+      cv::Mat prob16;
+      probability.convertTo(prob16, CV_16UC1, 10000.0);
+      writeImage(dataset_.probabilityPath(scene, im, obj), prob16);
+    }
+    cv::Mat depth16;
+    frame.depth.convertTo(depth16, CV_16UC1, 1000.0 / params_.depth_scale);
+    writeImage(dataset_.depthPath(scene, im), depth16);
+    writeImage(dataset_.rgbPath(scene, im), frame.rgb);
+    records.cameras[im] = camera_;
+  }
+
+  /// Writes the visible mask of every dataset object in the frame and records its pose and
+  /// visibility; returns the object ids present.
+  static std::set<int> writeInstances(const fs::path& dir, int im, const SyntheticFrame& frame,
+                                      const std::vector<PlacedObject>& objects,
+                                      const Eigen::Isometry3f& camera_pose, SceneRecords& records) {
+    std::set<int> present;
+    std::vector<BopGtInstance>& gt = records.gt[im];
+    gt.clear();  // an image whose objects all found no place still gets its (empty) entry
+    for (size_t i = 0; i < objects.size(); ++i) {
+      if (objects[i].obj_id == 0) continue;
+      const Eigen::Isometry3f pose = camera_pose * objects[i].pose;
+      gt.push_back({objects[i].obj_id, pose.linear().cast<double>(),
+                    pose.translation().cast<double>() * 1000.0});
+      const int label = static_cast<int>(i) + 1;
+      records.gt_info[im].push_back(visibility(frame.labels, label, frame.silhouette_pixels[i]));
+      writeImage(dir / "mask_visib" / fmt::format("{:06d}_{:06d}.png", im, gt.size() - 1),
+                 frame.labels == label);
+      present.insert(objects[i].obj_id);
+    }
+    return present;
+  }
+
+  const BopDataset& dataset_;
+  const SyntheticDatasetParams& params_;
+  const std::vector<std::pair<int, MeshData>> models_;
+  const SegmentationNoiseParams segmentation_;
+  const DepthNoiseParams noise_;
+  const BopFrameCamera camera_;
+  const std::function<void(const SyntheticImageReport&)>& progress_;
+};
+
 }  // namespace
 
 void SyntheticDatasetParams::validate() const {
@@ -147,83 +292,11 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
   params.validate();
   const std::vector<fs::path> model_files =
       models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
-  std::error_code ec;
-  if (fs::exists(root, ec) && !fs::is_empty(root, ec)) {
-    throw InputError(fmt::format("synth: {} exists and is not empty", root.string()));
-  }
-  fs::create_directories(root / "test", ec);
-  if (ec) {
-    throw InputError(fmt::format("synth: cannot create {}: {}", root.string(), ec.message()));
-  }
+  createDatasetRoot(root);
   writeModelsFolder(root / "models", model_files);
   const BopDataset dataset(root);
-  std::vector<std::pair<int, MeshData>> models;
-  for (const auto& [id, info] : dataset.modelsInfo()) {
-    models.emplace_back(id, loadMesh(dataset.modelPath(id).string(), 0.001f));
-  }
-  if (models.empty()) {
-    throw InputError(
-        fmt::format("synth: {} lists no models", (root / "models" / "models_info.json").string()));
-  }
-  const SegmentationNoiseParams segmentation = segmentationPreset(params.segmentation_preset);
-  const DepthNoiseParams noise = params.depth_noise.atLevel(params.depth_noise_level);
-  BopFrameCamera bop_camera;
-  bop_camera.K << params.camera.fx, 0, params.camera.cx, 0, params.camera.fy, params.camera.cy, 0,
-      0, 1;
-  bop_camera.depth_scale = params.depth_scale;
-
-  for (int scene = 0; scene < params.scenes; ++scene) {
-    Rng rng(streamSeed(params.seed, static_cast<uint64_t>(scene)));
-    const std::vector<PlacedObject> objects = arrangeObjects(models, params.layout, rng);
-    const std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
-    const fs::path dir = dataset.sceneDir(scene);
-    std::map<int, BopFrameCamera> cameras;
-    std::map<int, std::vector<BopGtInstance>> gt;
-    std::map<int, std::vector<BopGtInfo>> gt_info;
-    for (int im = 0; im < params.images_per_scene; ++im) {
-      const auto start = std::chrono::steady_clock::now();
-      const Eigen::Isometry3f camera_pose = randomCameraPose(params.layout, rng);
-      const uint64_t image_seed =
-          streamSeed(params.seed, (static_cast<uint64_t>(scene + 1) << 32) + im);
-      const SyntheticFrame frame =
-          renderSyntheticFrame(objects, colours, camera_pose, params.camera, noise, image_seed);
-
-      SegmentationScene seen{frame.labels, {}, frame.rgb};
-      std::set<int> present;
-      gt[im].clear();  // an image whose objects all found no place still gets its (empty) entry
-      for (size_t i = 0; i < objects.size(); ++i) {
-        seen.obj_ids.push_back(objects[i].obj_id);  // distractors are 0: never a target
-        if (objects[i].obj_id == 0) continue;
-        const Eigen::Isometry3f pose = camera_pose * objects[i].pose;
-        gt[im].push_back({objects[i].obj_id, pose.linear().cast<double>(),
-                          pose.translation().cast<double>() * 1000.0});
-        const int label = static_cast<int>(i) + 1;
-        gt_info[im].push_back(visibility(frame.labels, label, frame.silhouette_pixels[i]));
-        writeImage(dir / "mask_visib" / fmt::format("{:06d}_{:06d}.png", im, gt[im].size() - 1),
-                   frame.labels == label);
-        present.insert(objects[i].obj_id);
-      }
-      for (int obj : present) {
-        const cv::Mat probability =
-            simulateSegmentation(seen, obj, segmentation, streamSeed(image_seed, obj + 2));
-        cv::Mat prob16;
-        probability.convertTo(prob16, CV_16UC1, 10000.0);
-        writeImage(dataset.probabilityPath(scene, im, obj), prob16);
-      }
-      cv::Mat depth16;
-      frame.depth.convertTo(depth16, CV_16UC1, 1000.0 / params.depth_scale);
-      writeImage(dataset.depthPath(scene, im), depth16);
-      writeImage(dataset.rgbPath(scene, im), frame.rgb);
-      cameras[im] = bop_camera;
-      if (progress) {
-        progress({scene, im, static_cast<int>(gt[im].size()),
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-      }
-    }
-    writeSceneCameras(dir / "scene_camera.json", cameras);
-    writeSceneGroundTruth(dir / "scene_gt.json", gt);
-    writeSceneGtInfo(dir / "scene_gt_info.json", gt_info);
-  }
+  const SceneWriter writer(dataset, params, loadModels(dataset, root), progress);
+  for (int scene = 0; scene < params.scenes; ++scene) writer.writeScene(scene);
 }
 
 }  // namespace stocs

@@ -313,6 +313,146 @@ std::vector<LabelledTarget> mainTargets(const BenchData& d) {
   return rows;
 }
 
+/// A plot of one scope of a bench.
+using MakePlot = LinePlot (*)(const BenchData&, Scope);
+
+/// A sweep's section of the report.
+struct SweepSection {
+  Sweep sweep;
+  const std::vector<double>& values;
+  const char* heading;
+  const char* how;
+  const char* stem;  ///< of its figures and CSV file
+  MakePlot plot;
+};
+
+/// Writes a bench's report section by section: results.md, the CSV files beside it and, when
+/// asked, the figures in plots/.
+class BenchReportWriter {
+ public:
+  BenchReportWriter(const BenchData& d, const std::filesystem::path& out, bool plots)
+      : d_(d), out_(out), plots_(plots) {
+    // The pooled figure first, then one per input when there are several.
+    plot_scopes_ = {widest(d)};
+    if (d.inputs.size() > 1) {
+      for (size_t i = 0; i < d.inputs.size(); ++i) plot_scopes_.push_back(i);
+    }
+  }
+
+  /// Writes every file of the report.
+  void write() const {
+    std::string md = methodsSection();
+    md += "\n## ADD-S accuracy-threshold curves\n" + figures("accuracy_threshold", accuracyPlot);
+    md += sweepSections() + equalAccuracySection() + notesSection();
+    writeTextFile(out_ / "results.md", md);
+  }
+
+ private:
+  /// The title, the command, the machine and the table of methods x datasets (also written to
+  /// summary.csv, its targets to targets.csv).
+  std::string methodsSection() const {
+    const ReportTable main_table = mainTable(d_);
+    std::string md =
+        fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d_.command, machine());
+    md +=
+        "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() + timeLegend();
+    writeTextFile(out_ / "summary.csv", main_table.csv());
+    writeTextFile(out_ / "targets.csv",
+                  targetsCsv({"method", "dataset", "source"}, mainTargets(d_)));
+    return md;
+  }
+
+  /// What the table's time, CPU, memory and failure columns measure.
+  std::string timeLegend() const {
+    return "Time per object: the method's wall time for one object (after the frame's images and "
+           "the models are loaded), median and 90th percentile over the targets the run reported" +
+           std::string(d_.warm ? "; every run first estimated its first object once, untimed "
+                                 "(`stocs estimate --warm-up`), so that no target pays for the "
+                                 "process's first calls (thread pools, first-touch memory)"
+                               : "; cold (`--cold`): the first target of every run includes the "
+                                 "process's first-call costs") +
+           (d_.repeats > 1 ? fmt::format("; every image was processed {} times in a row and a "
+                                         "target's time is the median over them (`--repeats`)",
+                                         d_.repeats)
+                           : std::string()) +
+           ". CPU: the CPU time of the process, all its threads, during the same call; on a shared "
+           "machine it is not inflated by other processes as wall time is. Peak memory: the "
+           "maximum resident set size of the `stocs estimate` process that ran the "
+           "method on the dataset (one process per run). Failed runs: runs that crashed or exited "
+           "with an error; their targets count as missing.\n";
+  }
+
+  /// The figures `make` draws for every plot scope, rendered when plots are asked for; their
+  /// markdown links, or nothing without plots.
+  std::string figures(const std::string& stem, MakePlot make) const {
+    std::string links;
+    for (Scope scope : plot_scopes_) {
+      const std::string file = fmt::format("plots/{}_{}.png", stem, scopeTag(d_, scope));
+      if (plots_) renderPlot(make(d_, scope), out_ / file);
+      links += fmt::format("![{}, {}]({})\n", stem, scopeName(d_, scope), file);
+    }
+    return plots_ ? "\n" + links : std::string();
+  }
+
+  /// A section per sweep that ran: its table and figures (each also written to <stem>.csv).
+  std::string sweepSections() const {
+    const SweepSection sections[] = {
+        {Sweep::kThreshold, d_.thresholds, "Success rate versus segmentation threshold",
+         "Each method run again at every threshold: StoCS's epsilon (`--epsilon`) and the hard "
+         "segment's threshold (`--hard-threshold`) are both set to it.",
+         "threshold_sweep", thresholdPlot},
+        {Sweep::kBudget, d_.budgets, "Accuracy versus time budget (anytime)",
+         "Each method run again with `--time-budget` at every value, with a number of bases so "
+         "large that the budget ends the search.",
+         "budget_sweep", anytimePlot},
+        {Sweep::kBases, d_.base_counts, "Accuracy versus bases",
+         "Each method run again with `--bases` at every value (PCL's 4PCS: its iterations; "
+         "OpenCV's PPF has no such setting, so its rows only repeat).",
+         "bases_sweep", basesPlot},
+    };
+    std::string md;
+    for (const SweepSection& s : sections) {
+      if (s.values.empty()) continue;
+      md += fmt::format("\n## {}\n\n{}\n\n", s.heading, s.how) +
+            sweepTable(d_, s.sweep, s.values, widest(d_)).markdown() + figures(s.stem, s.plot);
+      writeTextFile(out_ / (std::string(s.stem) + ".csv"),
+                    sweepTable(d_, s.sweep, s.values, std::nullopt).csv());
+    }
+    return md;
+  }
+
+  /// Speed at equal or better accuracy, when bases were swept and there is another method to
+  /// compare with (also written to equal_accuracy.csv); nothing otherwise.
+  std::string equalAccuracySection() const {
+    if (d_.base_counts.empty() || d_.methods.size() <= 1) return {};
+    const ReportTable table = equalAccuracyTable(d_);
+    writeTextFile(out_ / "equal_accuracy.csv", table.csv());
+    return "\n## Speed at equal or better accuracy\n\nEach method of the base-count sweep at "
+           "the fewest bases from which on (at that count and every larger one swept) its ADD-S "
+           "AUC, over " +
+           scopeName(d_, widest(d_)) +
+           ", is at least that of another method's main run; \"faster by\" is the other "
+           "method's median time per object over this one's (above 1: this method is faster). "
+           "\"none\": not even the largest swept count reached that AUC.\n\n" +
+           table.markdown();
+  }
+
+  /// The bench's notes and the runs that failed, or nothing when there are none.
+  std::string notesSection() const {
+    std::string notes;
+    for (const std::string& n : d_.notes) notes += "- " + n + "\n";
+    for (const BenchRun& r : d_.runs) {
+      if (!r.failure.empty()) notes += fmt::format("- {}: {}\n", r.label(d_.inputs), r.failure);
+    }
+    return notes.empty() ? std::string() : "\n## Notes and failures\n\n" + notes;
+  }
+
+  const BenchData& d_;
+  const std::filesystem::path& out_;
+  bool plots_;
+  std::vector<Scope> plot_scopes_;
+};
+
 }  // namespace
 
 std::string BenchInput::tag() const {
@@ -331,96 +471,7 @@ std::string BenchRun::label(const std::vector<BenchInput>& inputs) const {
 }
 
 void writeBenchReport(const BenchData& d, const std::filesystem::path& out, bool plots) {
-  const ReportTable main_table = mainTable(d);
-  std::string md =
-      fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d.command, machine());
-  md += "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() +
-        "Time per object: the method's wall time for one object (after the frame's images and the "
-        "models are loaded), median and 90th percentile over the targets the run reported" +
-        std::string(d.warm ? "; every run first estimated its first object once, untimed "
-                             "(`stocs estimate --warm-up`), so that no target pays for the "
-                             "process's first calls (thread pools, first-touch memory)"
-                           : "; cold (`--cold`): the first target of every run includes the "
-                             "process's first-call costs") +
-        (d.repeats > 1 ? fmt::format("; every image was processed {} times in a row and a "
-                                     "target's time is the median over them (`--repeats`)",
-                                     d.repeats)
-                       : std::string()) +
-        ". CPU: the CPU time of the process, all its threads, during the same call; on a shared "
-        "machine it is not inflated by other processes as wall time is. Peak memory: the maximum "
-        "resident set size of the `stocs estimate` process that ran the "
-        "method on the dataset (one process per run). Failed runs: runs that crashed or exited "
-        "with an error; their targets count as missing.\n";
-  writeTextFile(out / "summary.csv", main_table.csv());
-  writeTextFile(out / "targets.csv", targetsCsv({"method", "dataset", "source"}, mainTargets(d)));
-
-  // The pooled figure first, then one per input when there are several.
-  std::vector<Scope> plot_scopes = {widest(d)};
-  if (d.inputs.size() > 1) {
-    for (size_t i = 0; i < d.inputs.size(); ++i) plot_scopes.push_back(i);
-  }
-  const auto figures = [&](const std::string& stem, LinePlot (*make)(const BenchData&, Scope)) {
-    std::string links;
-    for (Scope scope : plot_scopes) {
-      const std::string file = fmt::format("plots/{}_{}.png", stem, scopeTag(d, scope));
-      if (plots) renderPlot(make(d, scope), out / file);
-      links += fmt::format("![{}, {}]({})\n", stem, scopeName(d, scope), file);
-    }
-    return plots ? "\n" + links : std::string();
-  };
-  md += "\n## ADD-S accuracy-threshold curves\n" + figures("accuracy_threshold", accuracyPlot);
-
-  struct SweepSection {
-    Sweep sweep;
-    const std::vector<double>& values;
-    const char* heading;
-    const char* how;
-    const char* stem;
-    LinePlot (*plot)(const BenchData&, Scope);
-  };
-  const SweepSection sections[] = {
-      {Sweep::kThreshold, d.thresholds, "Success rate versus segmentation threshold",
-       "Each method run again at every threshold: StoCS's epsilon (`--epsilon`) and the hard "
-       "segment's threshold (`--hard-threshold`) are both set to it.",
-       "threshold_sweep", thresholdPlot},
-      {Sweep::kBudget, d.budgets, "Accuracy versus time budget (anytime)",
-       "Each method run again with `--time-budget` at every value, with a number of bases so "
-       "large that the budget ends the search.",
-       "budget_sweep", anytimePlot},
-      {Sweep::kBases, d.base_counts, "Accuracy versus bases",
-       "Each method run again with `--bases` at every value (PCL's 4PCS: its iterations; "
-       "OpenCV's PPF has no such setting, so its rows only repeat).",
-       "bases_sweep", basesPlot},
-  };
-  for (const SweepSection& s : sections) {
-    if (s.values.empty()) continue;
-    md += fmt::format("\n## {}\n\n{}\n\n", s.heading, s.how) +
-          sweepTable(d, s.sweep, s.values, widest(d)).markdown() + figures(s.stem, s.plot);
-    writeTextFile(out / (std::string(s.stem) + ".csv"),
-                  sweepTable(d, s.sweep, s.values, std::nullopt).csv());
-  }
-
-  if (!d.base_counts.empty() && d.methods.size() > 1) {
-    const ReportTable table = equalAccuracyTable(d);
-    md +=
-        "\n## Speed at equal or better accuracy\n\nEach method of the base-count sweep at "
-        "the fewest bases from which on (at that count and every larger one swept) its ADD-S "
-        "AUC, over " +
-        scopeName(d, widest(d)) +
-        ", is at least that of another method's main run; \"faster by\" is the other "
-        "method's median time per object over this one's (above 1: this method is faster). "
-        "\"none\": not even the largest swept count reached that AUC.\n\n" +
-        table.markdown();
-    writeTextFile(out / "equal_accuracy.csv", table.csv());
-  }
-
-  std::string notes;
-  for (const std::string& n : d.notes) notes += "- " + n + "\n";
-  for (const BenchRun& r : d.runs) {
-    if (!r.failure.empty()) notes += fmt::format("- {}: {}\n", r.label(d.inputs), r.failure);
-  }
-  if (!notes.empty()) md += "\n## Notes and failures\n\n" + notes;
-  writeTextFile(out / "results.md", md);
+  BenchReportWriter(d, out, plots).write();
 }
 
 }  // namespace stocs::tools

@@ -83,6 +83,26 @@ class NeighbourhoodGrid {
   static constexpr size_t kCellsPerBlock = kBlockSide * kBlockSide * kBlockSide;
   static constexpr uint32_t kNoBlock = UINT32_MAX;
 
+  // The constructor's stages. `reach` is the radius and a hair: see the constructor.
+  /// Copies the subset's points into points_ and original_ and gives their bounding box; throws
+  /// std::invalid_argument for a point that is not finite.
+  void copyPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<uint32_t>& subset,
+                  Eigen::Vector3f& lo, Eigen::Vector3f& hi);
+  /// Sizes the cells (the radius, grown while the blocks in reach of the points would hold too
+  /// many) and stores the blocks in reach; returns how many are stored.
+  uint32_t layOutBlocks(const Eigen::Vector3f& lo, const Eigen::Vector3f& hi, float reach);
+  /// Numbers the blocks within reach of some point in order of first use (block_of_); returns how
+  /// many there are.
+  uint32_t numberBlocks(float reach);
+  /// The cells that may come within reach of point j: [lo_cell, hi_cell] per axis.
+  void cellRange(uint32_t j, float reach, size_t (&lo_cell)[3], size_t (&hi_cell)[3]) const;
+  /// Calls emit(cell index) for every stored cell within reach of point j; per row of cells (y,
+  /// z) near the point, the cells of the row within reach form one run.
+  template <class Emit>
+  void forEachCellNear(uint32_t j, float reach, Emit&& emit) const;
+  /// Lists every point in each stored cell within its reach (start_, lists_).
+  void fillLists(uint32_t stored, float reach);
+
   /// Index of cell (x, y, z) (whole-grid cell coordinates) inside its stored block.
   static size_t cellIndex(uint32_t block, size_t x, size_t y, size_t z) {
     constexpr size_t m = kBlockSide - 1;
