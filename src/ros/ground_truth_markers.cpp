@@ -14,7 +14,7 @@ std_msgs::ColorRGBA truthColour() {
   c.r = 0.1f;
   c.g = 0.9f;
   c.b = 0.2f;
-  c.a = 0.45f;
+  c.a = 0.5f;
   return c;
 }
 

@@ -3,7 +3,9 @@
 #include <tf2_eigen/tf2_eigen.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <vector>
 
 namespace stocs_ros {
 namespace {
@@ -59,6 +61,48 @@ Eigen::Vector3d labelPositionAbove(const stocs::ObjectModel& model, const Eigen:
   // rviz centres the text on its position.
   const double depth = (near + far) / 2;
   return {depth * (left + right) / 2, depth * top - 0.75 * text_height, depth};
+}
+
+namespace {
+
+/// A label's box in normalized image coordinates (x / z, y / z; y down).
+struct LabelBox {
+  visualization_msgs::Marker* marker;
+  double u, v, half_width, half_height;
+
+  bool overlaps(const LabelBox& o) const {
+    return std::abs(u - o.u) < half_width + o.half_width &&
+           std::abs(v - o.v) < half_height + o.half_height;
+  }
+};
+
+}  // namespace
+
+void separateOverlappingLabels(visualization_msgs::MarkerArray& markers) {
+  std::vector<LabelBox> boxes;
+  for (visualization_msgs::Marker& m : markers.markers) {
+    const double z = m.pose.position.z;
+    if (m.type != visualization_msgs::Marker::TEXT_VIEW_FACING || !(z > 0)) continue;
+    const double height = m.scale.z / z;
+    boxes.push_back({&m, m.pose.position.x / z, m.pose.position.y / z,
+                     kLabelCharWidth * height * static_cast<double>(m.text.size()) / 2,
+                     height / 2});
+  }
+  std::sort(boxes.begin(), boxes.end(),
+            [](const LabelBox& a, const LabelBox& b) { return a.v > b.v; });
+  for (auto box = boxes.begin(); box != boxes.end(); ++box) {
+    // Each move puts the label above a placed one, higher than before, so this ends. The gap of a
+    // fifth of the label's height keeps the two apart whatever the rounding.
+    for (auto placed = boxes.begin(); placed != box;) {
+      if (!box->overlaps(*placed)) {
+        ++placed;
+        continue;
+      }
+      box->v = placed->v - placed->half_height - 1.4 * box->half_height;
+      placed = boxes.begin();
+    }
+    box->marker->pose.position.y = box->v * box->marker->pose.position.z;
+  }
 }
 
 void deleteMarkersNoLongerShown(visualization_msgs::MarkerArray& markers,

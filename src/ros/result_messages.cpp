@@ -9,15 +9,19 @@ namespace stocs_ros {
 namespace {
 
 /// Label text height, metres.
-constexpr double kLabelHeight = 0.02;
+constexpr double kLabelHeight = 0.025;
 
 geometry_msgs::Pose poseMsg(const Eigen::Isometry3f& pose) {
   return tf2::toMsg(Eigen::Isometry3d(pose.cast<double>()));
 }
 
 std_msgs::ColorRGBA colour(size_t object) {
-  // Distinct hues, one per object (golden-ratio steps around the colour wheel).
-  const float hue = std::fmod(0.6180339f * static_cast<float>(object), 1.0f) * 6.0f;
+  // Distinct hues, one per object: golden-ratio steps along the hue circle without its greens
+  // (80 to 180 degrees), which mark the ground truth; object 0 is red.
+  constexpr float kFirst = 180, kSpan = 260;  // degrees: cyan, blue, magenta, red, orange, yellow
+  const float step =
+      std::fmod((360 - kFirst) / kSpan + 0.6180339f * static_cast<float>(object), 1.0f);
+  const float hue = std::fmod(kFirst + kSpan * step, 360.0f) / 60.0f;
   const float x = 1.0f - std::abs(std::fmod(hue, 2.0f) - 1.0f);
   const float rgb[6][3] = {{1, x, 0}, {x, 1, 0}, {0, 1, x}, {0, x, 1}, {x, 0, 1}, {1, 0, x}};
   const float* c = rgb[static_cast<int>(hue) % 6];
@@ -25,7 +29,7 @@ std_msgs::ColorRGBA colour(size_t object) {
   out.r = c[0];
   out.g = c[1];
   out.b = c[2];
-  out.a = 0.8f;
+  out.a = 1.0f;
   return out;
 }
 
@@ -109,6 +113,7 @@ visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const Estim
     out.markers.push_back(objectBodyMarker(f, setup));
     out.markers.push_back(labelMarker(f, setup));
   }
+  separateOverlappingLabels(out);
   deleteMarkersNoLongerShown(out, shown);
   for (visualization_msgs::Marker& m : out.markers) m.header = result.header;
   return out;

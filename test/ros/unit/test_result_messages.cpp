@@ -2,6 +2,10 @@
 // markers that delete what is no longer found.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
 #include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {
@@ -133,6 +137,34 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
     EXPECT_GT(v + half_height, top - label.scale.z / z) << label.text << ": far above the object";
     EXPECT_NEAR(z, pose.translation().z(), 0.1);
   }
+}
+
+TEST(ResultMessages, EstimateColoursAvoidTheGroundTruthsGreen) {
+  EstimationSetup setup = twoObjects();
+  FrameResult result;
+  for (size_t k = 0; k < 40; ++k) {
+    ObjectConfig o = setup.config.objects[0];
+    o.name = "object_" + std::to_string(k);
+    setup.config.objects.push_back(o);
+    setup.models.push_back(setup.models[0]);
+    result.objects.push_back(outcome(k, true, 0.01f * static_cast<float>(k)));
+  }
+  std::set<MarkerKey> shown;
+  std::set<std::tuple<float, float, float>> distinct;
+  for (const visualization_msgs::Marker& m : toMarkers(result, setup, shown).markers) {
+    if (m.type == visualization_msgs::Marker::TEXT_VIEW_FACING) continue;
+    // Hue in degrees of the fully saturated colour.
+    const float r = m.color.r, g = m.color.g, b = m.color.b;
+    const float top = std::max({r, g, b}), range = top - std::min({r, g, b});
+    ASSERT_GT(range, 0.5f) << m.ns;
+    const float hue = top == r   ? std::fmod(60 * (g - b) / range + 360, 360.0f)
+                      : top == g ? 60 * (b - r) / range + 120
+                                 : 60 * (r - g) / range + 240;
+    EXPECT_TRUE(hue <= 80.5f || hue >= 179.5f) << m.ns << ": hue " << hue;
+    EXPECT_EQ(m.color.a, 1.0f);
+    distinct.insert({r, g, b});
+  }
+  EXPECT_EQ(distinct.size(), 40u);
 }
 
 /// `outcome` with `count` distinct instances at x = 0.1, 0.2, ... and falling scores.
