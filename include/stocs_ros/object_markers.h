@@ -34,13 +34,14 @@ visualization_msgs::Marker bodyMarker(const ObjectConfig& config, const stocs::O
 Eigen::Vector3d labelPositionAbove(const stocs::ObjectModel& model, const Eigen::Isometry3d& pose,
                                    double text_height);
 
+/// Width of one character of an rviz text marker, in text heights (its font's are narrower).
+constexpr double kLabelCharWidth = 0.5;
+
 /// Moves text labels (TEXT_VIEW_FACING) up, as a camera at the frame's origin sees them, until no
 /// two overlap: from the lowest label up, a label that overlaps one already placed goes just above
-/// it (a fifth of its height apart). A label's box is its text height by kLabelCharWidth text heights per character.
+/// it (a fifth of its height apart). A label's box: its text height by kLabelCharWidth text
+/// heights per character.
 void separateOverlappingLabels(visualization_msgs::MarkerArray& markers);
-
-/// Width of one character of an rviz text marker, in text heights (at most, for its font).
-constexpr double kLabelCharWidth = 0.5;
 
 /// Appends a DELETE marker for every key of `shown` (the previous call's) that `markers` does not
 /// add now, then makes `shown` the keys `markers` adds.
