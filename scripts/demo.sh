@@ -4,7 +4,8 @@
 # with roslaunch (scene publisher -> stocs_node -> demo recorder), prints per object the pose,
 # score and latency of each frame and the ADD-S error of the last against the ground truth, writes
 # build/demo/overlay.png, and exits 0 only if every object was found (ADD-S < 10% of its diameter).
-#   scripts/demo.sh [--rviz]      (--rviz: also open rviz, for machines with a display)
+#   scripts/demo.sh [--rviz]      (--rviz: also open rviz, on a machine with a display; the scene
+#                                  plays until rviz is closed)
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 rviz=false
@@ -36,6 +37,10 @@ rm -f "$demo/results.csv"
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$demo/ros"
 # The whole launch output goes to a log; the terminal shows the recorder's report.
+if $rviz; then
+  echo "demo: rviz shows the estimates (object colours) and the ground truth (green); the scene"
+  echo "plays until you close rviz, then the report follows"
+fi
 roslaunch -p "$port" stocs_ros demo.launch dataset:="$scene" results:="$demo/results.csv" \
   rviz:="$rviz" > "$demo/roslaunch.log" 2>&1 || true
 grep -E "^(frame |  |latency |results )|ERROR|FATAL" "$demo/roslaunch.log" || true

@@ -13,6 +13,7 @@
 
 #include "stocs_ros/estimation_setup.h"
 #include "stocs_ros/frame_estimation.h"
+#include "stocs_ros/object_markers.h"
 
 namespace stocs_ros {
 
@@ -38,13 +39,11 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
 /// The found poses, in the same order as toObjectPoseArray.
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result);
 
-/// A marker's namespace (object name) and id.
-using MarkerKey = std::pair<std::string, int>;
-
-/// Per found pose, its rviz mesh (config `mesh`) or else its model samples as points at the pose,
-/// and a text label "instanceName score"; namespace = object name, ids 2k (body) and 2k + 1 (label)
-/// for instance k. Markers in `shown` (those of the previous call) that are not shown now get
-/// DELETE markers; `shown` is updated.
+/// Per found pose, its body (bodyMarker: the config's mesh or else the model samples) in the
+/// object's colour, and a white text label "instanceName score" above the object
+/// (labelPositionAbove); namespace = object name, ids 2k (body) and 2k + 1 (label) for instance k.
+/// Markers in `shown` (those of the previous call) that are not shown now get DELETE markers;
+/// `shown` is updated.
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
                                           std::set<MarkerKey>& shown);
 

@@ -1,7 +1,8 @@
 #pragma once
 // Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
 // with camera_info, the colour image, per-object probability images (or one multi-channel image, as
-// the estimator's config says), the boundary map, and the ground truth as TF frames gt_<object>.
+// the estimator's config says), the boundary map, and the ground truth as TF frames gt_<object>
+// and, while someone subscribes, as rviz markers (ground_truth_markers.h).
 // Every message of one frame carries the same stamp: the time it is published, taken once all of
 // them are built, so that latencies measured from it (scripts/bench_latency.sh) are those of the
 // receiver and not of this player's own conversions.
@@ -16,6 +17,7 @@
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs_ros/bop_frame.h"
+#include "stocs_ros/ground_truth_markers.h"
 #include "stocs_ros/node_config.h"
 
 namespace stocs_ros {
@@ -58,6 +60,8 @@ class ScenePublisher {
   ros::Publisher cloud_, depth_, camera_info_, rgb_, multichannel_, boundary_;
   std::vector<ros::Publisher> probabilities_;  // per object, input.probability: per_object
   tf2_ros::TransformBroadcaster tf_;
+  ros::Publisher truth_markers_;
+  GroundTruthMarkers truth_marker_builder_{config_};
   ros::Timer timer_;
 };
 

@@ -3,22 +3,25 @@
 #include <fmt/format.h>
 #include <tf2_eigen/tf2_eigen.h>
 
-#include <algorithm>
 #include <cmath>
 
 namespace stocs_ros {
 namespace {
 
-/// Enough points to show the shape; rviz slows down with whole models of many objects.
-constexpr size_t kMaxMarkerPoints = 2000;
+/// Label text height, metres.
+constexpr double kLabelHeight = 0.025;
 
 geometry_msgs::Pose poseMsg(const Eigen::Isometry3f& pose) {
   return tf2::toMsg(Eigen::Isometry3d(pose.cast<double>()));
 }
 
 std_msgs::ColorRGBA colour(size_t object) {
-  // Distinct hues, one per object (golden-ratio steps around the colour wheel).
-  const float hue = std::fmod(0.6180339f * static_cast<float>(object), 1.0f) * 6.0f;
+  // Distinct hues, one per object: golden-ratio steps along the hue circle without its greens
+  // (80 to 180 degrees), which mark the ground truth; object 0 is red.
+  constexpr float kFirst = 180, kSpan = 260;  // degrees: cyan, blue, magenta, red, orange, yellow
+  const float step =
+      std::fmod((360 - kFirst) / kSpan + 0.6180339f * static_cast<float>(object), 1.0f);
+  const float hue = std::fmod(kFirst + kSpan * step, 360.0f) / 60.0f;
   const float x = 1.0f - std::abs(std::fmod(hue, 2.0f) - 1.0f);
   const float rgb[6][3] = {{1, x, 0}, {x, 1, 0}, {0, 1, x}, {0, x, 1}, {x, 0, 1}, {1, 0, x}};
   const float* c = rgb[static_cast<int>(hue) % 6];
@@ -26,37 +29,17 @@ std_msgs::ColorRGBA colour(size_t object) {
   out.r = c[0];
   out.g = c[1];
   out.b = c[2];
-  out.a = 0.8f;
+  out.a = 1.0f;
   return out;
 }
 
-visualization_msgs::Marker bodyMarker(const FoundPose& f, const EstimationSetup& setup) {
+visualization_msgs::Marker objectBodyMarker(const FoundPose& f, const EstimationSetup& setup) {
   const size_t object = f.outcome->object;
-  const ObjectConfig& config = setup.config.objects[object];
-  visualization_msgs::Marker m;
-  m.ns = config.name;
+  visualization_msgs::Marker m =
+      bodyMarker(setup.config.objects[object], setup.models[object].model,
+                 Eigen::Isometry3d(f.pose.cast<double>()), colour(object));
+  m.ns = setup.config.objects[object].name;
   m.id = static_cast<int>(2 * f.instance);
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose = poseMsg(f.pose);
-  m.color = colour(object);
-  if (!config.mesh_url.empty()) {
-    m.type = visualization_msgs::Marker::MESH_RESOURCE;
-    m.mesh_resource = config.mesh_url;
-    m.scale.x = m.scale.y = m.scale.z = config.mesh_scale;
-    return m;
-  }
-  const std::vector<Eigen::Vector3f>& samples = setup.models[object].model.points;
-  m.type = visualization_msgs::Marker::POINTS;
-  m.scale.x = m.scale.y = std::max(0.002f, setup.models[object].model.sampling_radius);
-  const size_t stride =
-      std::max<size_t>(1, (samples.size() + kMaxMarkerPoints - 1) / kMaxMarkerPoints);
-  for (size_t i = 0; i < samples.size(); i += stride) {
-    geometry_msgs::Point p;
-    p.x = samples[i].x();
-    p.y = samples[i].y();
-    p.z = samples[i].z();
-    m.points.push_back(p);
-  }
   return m;
 }
 
@@ -69,13 +52,9 @@ visualization_msgs::Marker labelMarker(const FoundPose& f, const EstimationSetup
   m.action = visualization_msgs::Marker::ADD;
   m.text = fmt::format("{} {:.3f}", instanceName(m.ns, f.instance), f.score);
   m.pose.orientation.w = 1;
-  // Above the object: optical frames have y pointing down.
-  const Eigen::Vector3f at =
-      f.pose.translation() - Eigen::Vector3f(0, 0.6f * setup.models[object].model.diameter, 0);
-  m.pose.position.x = at.x();
-  m.pose.position.y = at.y();
-  m.pose.position.z = at.z();
-  m.scale.z = 0.02;
+  m.pose.position = tf2::toMsg(labelPositionAbove(
+      setup.models[object].model, Eigen::Isometry3d(f.pose.cast<double>()), kLabelHeight));
+  m.scale.z = kLabelHeight;
   m.color.r = m.color.g = m.color.b = m.color.a = 1;
   return m;
 }
@@ -130,23 +109,13 @@ geometry_msgs::PoseArray toPoseArray(const FrameResult& result) {
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
                                           std::set<MarkerKey>& shown) {
   visualization_msgs::MarkerArray out;
-  std::set<MarkerKey> now;
   for (const FoundPose& f : foundPoses(result)) {
-    for (visualization_msgs::Marker m : {bodyMarker(f, setup), labelMarker(f, setup)}) {
-      now.insert({m.ns, m.id});
-      out.markers.push_back(std::move(m));
-    }
+    out.markers.push_back(objectBodyMarker(f, setup));
+    out.markers.push_back(labelMarker(f, setup));
   }
-  for (const MarkerKey& key : shown) {
-    if (now.count(key)) continue;
-    visualization_msgs::Marker m;
-    m.ns = key.first;
-    m.id = key.second;
-    m.action = visualization_msgs::Marker::DELETE;
-    out.markers.push_back(m);
-  }
+  separateOverlappingLabels(out);
+  deleteMarkersNoLongerShown(out, shown);
   for (visualization_msgs::Marker& m : out.markers) m.header = result.header;
-  shown = std::move(now);
   return out;
 }
 

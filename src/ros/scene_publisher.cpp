@@ -106,6 +106,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
   camera_info_ = pnh_.advertise<sensor_msgs::CameraInfo>("camera_info", 2);
   rgb_ = pnh_.advertise<sensor_msgs::Image>("rgb", 2);
   boundary_ = pnh_.advertise<sensor_msgs::Image>("boundary", 2);
+  truth_markers_ = pnh_.advertise<visualization_msgs::MarkerArray>("ground_truth_markers", 2);
   if (config_.input.probability == ProbabilitySource::kMultichannel) {
     multichannel_ = pnh_.advertise<sensor_msgs::Image>("probability", 2);
   } else {
@@ -216,6 +217,7 @@ void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Hea
   if (image == scene->second.end()) return;
   std::map<std::string, int> instances;
   std::vector<geometry_msgs::TransformStamped> transforms;
+  std::vector<TruthPose> truth;
   for (const stocs::BopGtInstance& g : image->second) {
     const std::string name = objectName(g.obj_id);
     const int k = instances[name]++;
@@ -226,8 +228,12 @@ void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Hea
     t.header = header;
     t.child_frame_id = "gt_" + name + (k > 0 ? "_" + std::to_string(k) : "");
     transforms.push_back(t);
+    truth.push_back({name, static_cast<size_t>(k), pose});
   }
   tf_.sendTransform(transforms);
+  if (truth_markers_.getNumSubscribers() > 0) {
+    truth_markers_.publish(truth_marker_builder_.build(truth, header));
+  }
 }
 
 std::string ScenePublisher::objectName(int obj_id) const {

@@ -1,7 +1,8 @@
 // The StoCS node (or nodelet) fed by the scene publisher playing a BOP frame with a known pose:
-// TF, ~poses, ~objects and ~markers agree with the ground truth; ~estimate answers on the latest
-// frame and on explicit inputs and names bad requests; outputs keep up with the input rate without
-// repeated TF stamps. Parameters (private) say which frame and object and how close.
+// TF, ~poses, ~objects and ~markers agree with the ground truth, and so do the publisher's gt_
+// frame and ground-truth markers; ~estimate answers on the latest frame and on explicit inputs and
+// names bad requests; outputs keep up with the input rate without repeated TF stamps. Parameters
+// (private) say which frame and object and how close.
 #include <cv_bridge/cv_bridge.h>
 #include <geometry_msgs/PoseArray.h>
 #include <gtest/gtest.h>
@@ -16,7 +17,10 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
+#include <condition_variable>
 #include <map>
+#include <mutex>
+#include <set>
 
 #include "ros_test_support.h"
 #include "test_support.h"
@@ -124,6 +128,54 @@ TEST_F(NodeOutputs, PublisherGroundTruthFrameMatchesTheDataset) {
       g_expected.frame_id, "gt_" + g_expected.object, ros::Time(0), ros::Duration(30)));
   EXPECT_LT(translationError(gt, truth_), 1e-6);
   EXPECT_LT(rotationError(gt, truth_), 1e-3);
+}
+
+TEST_F(NodeOutputs, PublisherGroundTruthMarkersDrawTheDatasetsTruthWithTheFramesStamp) {
+  // The markers and the gt_ TF frames of the played frames, matched by stamp.
+  const std::string ns = "gt_" + g_expected.object;
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::set<ros::Time> tf_stamps;
+  std::map<ros::Time, visualization_msgs::Marker> bodies;  // by stamp
+  ros::NodeHandle nh;
+  const boost::function<void(const tf2_msgs::TFMessage::ConstPtr&)> on_tf =
+      [&](const tf2_msgs::TFMessage::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& t : m->transforms) {
+          if (t.child_frame_id == ns) tf_stamps.insert(t.header.stamp);
+        }
+        arrived.notify_all();
+      };
+  const boost::function<void(const visualization_msgs::MarkerArray::ConstPtr&)> on_markers =
+      [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const visualization_msgs::Marker& marker : m->markers) {
+          if (marker.ns == ns && marker.action == visualization_msgs::Marker::ADD) {
+            bodies[marker.header.stamp] = marker;
+          }
+        }
+        arrived.notify_all();
+      };
+  ros::Subscriber tf_sub = nh.subscribe<tf2_msgs::TFMessage>("/tf", 100, on_tf);
+  ros::Subscriber markers_sub = nh.subscribe<visualization_msgs::MarkerArray>(
+      "/scene_publisher/ground_truth_markers", 5, on_markers);
+  std::unique_lock<std::mutex> lock(mutex);
+  const auto same_frame = [&]() -> const visualization_msgs::Marker* {
+    for (const auto& [stamp, marker] : bodies) {
+      if (tf_stamps.count(stamp)) return &marker;
+    }
+    return nullptr;
+  };
+  arrived.wait_for(lock, std::chrono::seconds(30), [&] { return same_frame() != nullptr; });
+  ASSERT_FALSE(bodies.empty()) << "no " << ns << " marker on /scene_publisher/ground_truth_markers";
+  const visualization_msgs::Marker* body = same_frame();
+  ASSERT_TRUE(body) << "no " << ns << " marker has the stamp of a " << ns << " TF frame";
+  EXPECT_EQ(body->header.frame_id, g_expected.frame_id);
+  EXPECT_EQ(body->id, 0);
+  EXPECT_TRUE(body->type == visualization_msgs::Marker::POINTS ||
+              body->type == visualization_msgs::Marker::MESH_RESOURCE);
+  EXPECT_LT(translationError(poseToEigen(body->pose), truth_), 1e-6);
+  EXPECT_LT(rotationError(poseToEigen(body->pose), truth_), 1e-3);
 }
 
 TEST_F(NodeOutputs, MarkersShowTheObjectWithALabel) {

@@ -2,6 +2,10 @@
 // markers that delete what is no longer found.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
 #include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {
@@ -91,6 +95,76 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   EXPECT_EQ(shown, (std::set<MarkerKey>{{"can", 0}, {"can", 1}}));
   // Once deleted, a marker is not deleted again.
   EXPECT_EQ(toMarkers(only_can, setup, shown).markers.size(), 2u);
+}
+
+TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
+  // Two 10 cm cubes side by side, tilted, left and right of the optical axis, above and below it.
+  EstimationSetup setup = twoObjects();
+  for (stocs::PreparedModel& m : setup.models) {
+    m.model.points.clear();
+    for (int i = 0; i < 8; ++i) {
+      m.model.points.emplace_back(i & 1 ? 0.05f : -0.05f, i & 2 ? 0.05f : -0.05f,
+                                  i & 4 ? 0.05f : -0.05f);
+    }
+    m.model.diameter = 0.17f;
+  }
+  FrameResult result;
+  result.objects = {outcome(0, true, -0.12f), outcome(1, true, 0.12f)};
+  result.objects[0].estimate.estimate.pose.translation().y() = -0.2f;
+  result.objects[1].estimate.estimate.pose.translation().y() = 0.15f;
+  result.objects[1].estimate.estimate.pose.linear() =
+      Eigen::AngleAxisf(0.5f, Eigen::Vector3f(1, 0.2f, 0).normalized()).matrix();
+  std::set<MarkerKey> shown;
+  const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
+  ASSERT_EQ(markers.markers.size(), 4u);
+  for (size_t object = 0; object < 2; ++object) {
+    const visualization_msgs::Marker& label = markers.markers[2 * object + 1];
+    ASSERT_EQ(label.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
+    const Eigen::Isometry3f& pose = result.objects[object].estimate.estimate.pose;
+    // The object's extent in normalized image coordinates (x / z, y / z; y down).
+    float left = 1e9f, right = -1e9f, top = 1e9f;
+    for (const Eigen::Vector3f& p : setup.models[object].model.points) {
+      const Eigen::Vector3f q = pose * p;
+      left = std::min(left, q.x() / q.z());
+      right = std::max(right, q.x() / q.z());
+      top = std::min(top, q.y() / q.z());
+    }
+    const double z = label.pose.position.z;
+    const double u = label.pose.position.x / z, v = label.pose.position.y / z;
+    const double half_height = label.scale.z / 2 / z;  // rviz centres the text
+    EXPECT_NEAR(u, (left + right) / 2, 1e-4) << label.text;
+    EXPECT_LT(v + half_height, top) << label.text << ": the text's lower edge is on the object";
+    EXPECT_GT(v + half_height, top - label.scale.z / z) << label.text << ": far above the object";
+    EXPECT_NEAR(z, pose.translation().z(), 0.1);
+  }
+}
+
+TEST(ResultMessages, EstimateColoursAvoidTheGroundTruthsGreen) {
+  EstimationSetup setup = twoObjects();
+  FrameResult result;
+  for (size_t k = 0; k < 40; ++k) {
+    ObjectConfig o = setup.config.objects[0];
+    o.name = "object_" + std::to_string(k);
+    setup.config.objects.push_back(o);
+    setup.models.push_back(setup.models[0]);
+    result.objects.push_back(outcome(k, true, 0.01f * static_cast<float>(k)));
+  }
+  std::set<MarkerKey> shown;
+  std::set<std::tuple<float, float, float>> distinct;
+  for (const visualization_msgs::Marker& m : toMarkers(result, setup, shown).markers) {
+    if (m.type == visualization_msgs::Marker::TEXT_VIEW_FACING) continue;
+    // Hue in degrees of the fully saturated colour.
+    const float r = m.color.r, g = m.color.g, b = m.color.b;
+    const float top = std::max({r, g, b}), range = top - std::min({r, g, b});
+    ASSERT_GT(range, 0.5f) << m.ns;
+    const float hue = top == r   ? std::fmod(60 * (g - b) / range + 360, 360.0f)
+                      : top == g ? 60 * (b - r) / range + 120
+                                 : 60 * (r - g) / range + 240;
+    EXPECT_TRUE(hue <= 80.5f || hue >= 179.5f) << m.ns << ": hue " << hue;
+    EXPECT_EQ(m.color.a, 1.0f);
+    distinct.insert({r, g, b});
+  }
+  EXPECT_EQ(distinct.size(), 40u);
 }
 
 /// `outcome` with `count` distinct instances at x = 0.1, 0.2, ... and falling scores.
