@@ -26,6 +26,8 @@ PACKAGES=(
   python3-rostopic python3-rosservice python3-rosnode python3-genpy
   python3-diagnostic-msgs python3-std-srvs python3-rosgraph-msgs
   catkin-lint
+  # scripts/rviz_screenshots.sh takes its screenshots with ImageMagick's import.
+  imagemagick
 )
 
 missing=()

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "stocs/object_model.h"
+#include "stocs/model/object_model.h"
 #include "stocs_ros/node_config.h"
 #include "stocs_ros/object_markers.h"
 

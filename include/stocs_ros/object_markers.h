@@ -12,7 +12,7 @@
 #include <string>
 #include <utility>
 
-#include "stocs/object_model.h"
+#include "stocs/model/object_model.h"
 #include "stocs_ros/node_config.h"
 
 namespace stocs_ros {

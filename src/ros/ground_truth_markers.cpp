@@ -2,8 +2,8 @@
 
 #include <ros/console.h>
 
-#include "stocs/error.h"
-#include "stocs/mesh.h"
+#include "stocs/io/mesh_io.h"
+#include "stocs/util/error.h"
 
 namespace stocs_ros {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "stocs/mesh.h"
+#include "stocs/io/mesh_io.h"
 #include "stocs_ros/ground_truth_markers.h"
 
 namespace stocs_ros {
