@@ -37,7 +37,8 @@ namespace stocs_ros {
 
 class StocsNode {
  public:
-  /// Reads the configuration file named by ~config, prepares the models, subscribes and advertises.
+  /// Reads the configuration file named by ~config ($(dataset) in its paths standing for ~dataset),
+  /// prepares the models, subscribes and advertises.
   /// Throws stocs::InputError naming the problem when the configuration or a model is bad.
   explicit StocsNode(ros::NodeHandle pnh);
   ~StocsNode();
@@ -61,6 +62,8 @@ class StocsNode {
     bool requested = false;  ///< by ~estimate, not a synchronized frame
   };
 
+  /// Reads the configuration file and prepares its models (start and ~reload).
+  std::shared_ptr<const EstimationSetup> loadSetup() const;
   std::shared_ptr<const EstimationSetup> setup() const;
   void subscribeInputs();
   template <class Message>
@@ -78,6 +81,7 @@ class StocsNode {
 
   ros::NodeHandle pnh_;
   std::string config_file_;
+  std::string dataset_;  ///< ~dataset: what $(dataset) in the configuration's paths stands for
   mutable std::mutex setup_mutex_;
   std::shared_ptr<const EstimationSetup> setup_;
 

@@ -63,7 +63,7 @@ sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
 ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
     : pnh_(pnh),
       dataset_(requiredParam(pnh, "dataset"), pnh.param<std::string>("split", "test")),
-      config_(loadNodeConfig(requiredParam(pnh, "config"))),
+      config_(loadNodeConfig(requiredParam(pnh, "config"), dataset_.root())),
       frame_id_(pnh.param<std::string>("frame_id", "camera_optical_frame")),
       probability_encoding_(pnh.param<std::string>("probability_encoding", "mono16")),
       publish_boundary_(pnh.param("boundary", true)),

@@ -61,8 +61,8 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
 StocsNode::StocsNode(ros::NodeHandle pnh)
     : pnh_(pnh),
       config_file_(requireConfigParameter(pnh)),
-      setup_(EstimationSetup::load(config_file_,
-                                   [](const std::string& line) { ROS_INFO("%s", line.c_str()); })),
+      dataset_(pnh.param<std::string>("dataset", "")),
+      setup_(loadSetup()),
       output_(pnh_),
       service_spinner_(1, &service_queue_) {
   const NodeConfig& config = setup_->config;
@@ -93,6 +93,11 @@ StocsNode::~StocsNode() {
   reload_service_.shutdown();
   worker_.reset();
   ROS_INFO("stocs: at shutdown: %s", statistics_->summary().c_str());
+}
+
+std::shared_ptr<const EstimationSetup> StocsNode::loadSetup() const {
+  return EstimationSetup::load(config_file_, dataset_,
+                               [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
 }
 
 std::shared_ptr<const EstimationSetup> StocsNode::setup() const {
@@ -324,8 +329,7 @@ bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& respo
 
 bool StocsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
-    const std::shared_ptr<const EstimationSetup> fresh = EstimationSetup::load(
-        config_file_, [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
+    const std::shared_ptr<const EstimationSetup> fresh = loadSetup();
     checkSameInputs(setup()->config, fresh->config);
     {
       std::lock_guard<std::mutex> lock(setup_mutex_);

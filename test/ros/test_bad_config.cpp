@@ -27,9 +27,10 @@ int run(const std::string& executable, const std::string& args, std::string& out
                                  output);
 }
 
-void expectNodeFails(const std::filesystem::path& config, const std::string& expected) {
+void expectNodeFails(const std::filesystem::path& config, const std::string& expected,
+                     const std::string& args = "") {
   std::string output;
-  EXPECT_EQ(run(STOCS_NODE_PATH, "_config:=" + config.string(), output), 1) << output;
+  EXPECT_EQ(run(STOCS_NODE_PATH, "_config:=" + config.string() + " " + args, output), 1) << output;
   EXPECT_NE(output.find(expected), std::string::npos) << "expected '" << expected << "' in:\n"
                                                       << output;
 }
@@ -60,6 +61,14 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
       "object 'box': model " + (dir / "nowhere.ply").string());
   expectNodeFails(writeConfig(dir, "no_objects.yaml", "objects: []\n"),
                   "'objects' must be a non-empty list");
+  // Models named inside the dataset the launch files pass (config/default.yaml does).
+  const std::filesystem::path in_dataset = writeConfig(
+      dir, "in_dataset.yaml", "objects:\n  - name: box\n    model: $(dataset)/box.ply\n");
+  expectNodeFails(in_dataset,
+                  "objects[0].model: path '$(dataset)/box.ply' uses $(dataset), but no dataset "
+                  "was given: set the node's ~dataset parameter");
+  expectNodeFails(in_dataset, "object 'box': model /no/such/dataset/box.ply: no such file",
+                  "_dataset:=/no/such/dataset");
 
   std::ofstream(dir / "empty.ply").flush();
   expectNodeFails(

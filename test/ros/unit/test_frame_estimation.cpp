@@ -36,7 +36,7 @@ class FrameEstimation : public ::testing::Test {
         << "objects:\n  - {name: box, model: data/models/obj_000001.ply}\n"
         << "model_cache: cache\n"
         << input;
-    return EstimationSetup::load(*dir_ / "node.yaml", [](const std::string&) {});
+    return EstimationSetup::load(*dir_ / "node.yaml", {}, [](const std::string&) {});
   }
 
   static sensor_msgs::ImagePtr image(const std::string& encoding, const cv::Mat& pixels) {
