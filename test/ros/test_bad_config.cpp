@@ -103,6 +103,20 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   const std::string args = "_config:=" + config.string() + " _dataset:=" + data.string();
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0.0", output), 1) << output;
   EXPECT_NE(output.find("rate 0 Hz is outside (0, 100]"), std::string::npos) << output;
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _probability_source:=network", output), 1) << output;
+  EXPECT_NE(
+      output.find("parameter probability_source 'network': unknown probability source 'network'; "
+                  "known: 'real'"),
+      std::string::npos)
+      << output;
+  EXPECT_NE(output.find("'sim:PRESET'"), std::string::npos) << output;
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _probability_source:=sim:wild", output), 1)
+      << output;
+  EXPECT_NE(
+      output.find("parameter probability_source 'sim:wild': unknown segmentation preset 'wild'; "
+                  "known presets: "),
+      std::string::npos)
+      << output;
   // roscpp reads `_scenes:=4` as an integer, not a list.
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _scenes:=4", output), 1) << output;
   EXPECT_NE(output.find("scenes must be a list of integers"), std::string::npos) << output;
@@ -111,6 +125,32 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   ros::param::set("/" + name + "/scenes", std::vector<int>{4});
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args, output, name), 1) << output;
   EXPECT_NE(output.find("scene 4 does not exist"), std::string::npos) << output;
+}
+
+TEST(BadConfig, ScenePublisherWarnsOnceOfAFrameWithoutProbabilityMaps) {
+  const std::filesystem::path dir = stocs::test::scratchDir("publisher");
+  const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
+  const std::filesystem::path data = dir / "data";
+  stocs::test::writeSyntheticBopDataset(data);
+  std::filesystem::remove_all(data / "test" / "000000" / "prob");
+  // It plays the frame in a loop until `timeout` ends it (exit code 124).
+  std::string output;
+  EXPECT_EQ(stocs::test::runCommand(
+                "timeout 10 " + std::string(SCENE_PUBLISHER_PATH) + " __name:=" + nextNodeName() +
+                    " _config:=" + config.string() + " _dataset:=" + data.string() + " _rate:=20",
+                output),
+            124)
+      << output;
+  const std::string warning = data.string() +
+                              " has no probability map (prob/) for object 'box' (id 1) in scene 0 "
+                              "image 0: its probability image is all zero";
+  const size_t first = output.find(warning);
+  ASSERT_NE(first, std::string::npos) << output;
+  EXPECT_EQ(output.find(warning, first + 1), std::string::npos) << "warned twice:\n" << output;
+  EXPECT_NE(output.find("set the parameter ~probability_source (launch argument "
+                        "probability_source:=) to sim:PRESET, e.g. sim:mild"),
+            std::string::npos)
+      << output;
 }
 
 }  // namespace
