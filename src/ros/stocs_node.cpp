@@ -165,10 +165,12 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
   statistics_->received(input);
   const std::shared_ptr<const EstimationSetup> current = setup();
   std::vector<DroppedMessage> dropped;
-  std::optional<EstimationJob> job;
+  std::optional<QueuedJob> job;
   {
     std::lock_guard<std::mutex> lock(sync_mutex_);
+    const uint64_t jumps_before = sync_->timeJumps();
     auto match = sync_->add(input, stamp, std::move(message), dropped);
+    if (sync_->timeJumps() > jumps_before) onTimeJump(input, stamp);
     statistics_->dropped(dropped);
     if (!dropped.empty()) {
       const DroppedMessage& d = dropped.back();
@@ -180,19 +182,28 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
     if (!match) return;
     statistics_->matched();
     latest_frame_ = toFrame(match->messages, current->config.objects.size());
+    latest_timeline_ = sync_->timeJumps();
     if (!current->config.output.estimate_on_frames) {
       statistics_->kept();
       return;
     }
-    job = EstimationJob{*latest_frame_, {}, std::nullopt};
+    job = QueuedJob{{*latest_frame_, {}, std::nullopt}, current, false, latest_timeline_};
   }
-  for (size_t i = 0; i < current->config.objects.size(); ++i) job->objects.push_back(i);
-  if (worker_->offer({std::move(*job), current})) {
+  for (size_t i = 0; i < current->config.objects.size(); ++i) job->job.objects.push_back(i);
+  if (worker_->offer(std::move(*job))) {
     statistics_->replaced();
     ROS_WARN_THROTTLE(kWarnPeriod,
                       "stocs: estimation is slower than the input; a newer frame replaced one "
                       "waiting (counts on ~statistics)");
   }
+}
+
+void StocsNode::onTimeJump(size_t input, const ros::Time& stamp) {
+  statistics_->timeJumpedBack();
+  ROS_WARN(
+      "stocs: time went back: %s is stamped %.3f, at or before the last matched frame (a bag "
+      "played in a loop, a restarted camera driver or simulator?); synchronizing anew from there",
+      inputs_[input].topic.c_str(), stamp.toSec());
 }
 
 FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t objects) const {
@@ -232,7 +243,7 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
       e.pose = tracker_.track(o.object, e.pose, queued.setup->config.objects[o.object].symmetries);
     }
   }
-  output_.publish(result, *queued.setup);
+  output_.publish(result, *queued.setup, queued.timeline);
   if (!queued.requested) statistics_->estimated();
   return result;
 }
@@ -291,7 +302,7 @@ std::future<FrameResult> StocsNode::requestEstimation(
           "no synchronized input frame yet; publish the inputs or pass a cloud and probabilities");
     }
     job.frame = *latest_frame_;
-    return worker_->request({std::move(job), setup, true});
+    return worker_->request({std::move(job), setup, true, latest_timeline_});
   }
   if (request.probabilities.size() != job.objects.size()) {
     throw InputError(
@@ -308,7 +319,8 @@ std::future<FrameResult> StocsNode::requestEstimation(
   if (!request.boundary.data.empty() || request.boundary.width > 0) {
     job.frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
   }
-  return worker_->request({std::move(job), setup, true});
+  std::lock_guard<std::mutex> lock(sync_mutex_);
+  return worker_->request({std::move(job), setup, true, sync_->timeJumps()});
 }
 
 bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
