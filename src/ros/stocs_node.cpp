@@ -4,6 +4,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 
+#include <algorithm>
 #include <boost/make_shared.hpp>
 
 #include "stocs/error.h"
@@ -54,6 +55,53 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
   }
   return fmt::format("{} of {} objects found{}", found, result.objects.size(),
                      missing.empty() ? "" : "; no pose for " + missing);
+}
+
+/// Whether an optional message of an ~estimate request was filled in.
+bool given(const sensor_msgs::PointCloud2& cloud) {
+  return !cloud.data.empty() || cloud.width > 0;
+}
+bool given(const sensor_msgs::Image& image) {
+  return !image.data.empty() || image.width > 0;
+}
+bool given(const sensor_msgs::CameraInfo& info) {
+  return info.width > 0 || info.height > 0 ||
+         std::any_of(info.K.begin(), info.K.end(), [](double k) { return k != 0; });
+}
+
+/// The frame of an ~estimate request with explicit inputs: a cloud, or a depth image with its
+/// camera_info, and one probability image per requested object (`objects`, indices into the
+/// `object_count` configured objects).
+FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>& objects,
+                           size_t object_count) {
+  if (given(request.cloud) && given(request.depth)) {
+    throw InputError("both a cloud and a depth image were given; pass one of them");
+  }
+  if (given(request.depth) && !given(request.camera_info)) {
+    throw InputError("a depth image was given without its camera_info (the camera's intrinsics)");
+  }
+  if (request.probabilities.size() != objects.size()) {
+    throw InputError(
+        fmt::format("{} probability images for {} objects; give one per object, in "
+                    "the order of `objects`",
+                    request.probabilities.size(), objects.size()));
+  }
+  FrameMessages frame;
+  if (given(request.cloud)) {
+    frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
+  } else {
+    frame.depth = boost::make_shared<sensor_msgs::Image>(std::move(request.depth));
+    frame.camera_info = boost::make_shared<sensor_msgs::CameraInfo>(std::move(request.camera_info));
+  }
+  frame.probabilities.resize(object_count);
+  for (size_t k = 0; k < objects.size(); ++k) {
+    frame.probabilities[objects[k]] =
+        boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
+  }
+  if (given(request.boundary)) {
+    frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
+  }
+  return frame;
 }
 
 }  // namespace
@@ -289,36 +337,25 @@ std::future<FrameResult> StocsNode::requestEstimation(
   }
   if (request.time_budget > 0) job.time_budget = request.time_budget;
 
-  const bool explicit_cloud = !request.cloud.data.empty() || request.cloud.width > 0;
-  if (!explicit_cloud) {
+  if (given(request.camera_info) && !given(request.depth)) {
+    throw InputError("a camera_info was given without a depth image");
+  }
+  if (!given(request.cloud) && !given(request.depth)) {
     if (!request.probabilities.empty()) {
-      throw InputError("probabilities were given without a cloud");
+      throw InputError("probabilities were given without a cloud or depth image");
     }
     // Taken and queued under the synchronizer's lock: a frame matched between the two could start
     // first, publish a newer stamp, and this result would then be too old for the topics.
     std::lock_guard<std::mutex> lock(sync_mutex_);
     if (!latest_frame_) {
       throw InputError(
-          "no synchronized input frame yet; publish the inputs or pass a cloud and probabilities");
+          "no synchronized input frame yet; publish the inputs or pass a cloud (or a depth image "
+          "with its camera_info) and probabilities");
     }
     job.frame = *latest_frame_;
     return worker_->request({std::move(job), setup, true, latest_timeline_});
   }
-  if (request.probabilities.size() != job.objects.size()) {
-    throw InputError(
-        fmt::format("{} probability images for {} objects; give one per object, in "
-                    "the order of `objects`",
-                    request.probabilities.size(), job.objects.size()));
-  }
-  job.frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
-  job.frame.probabilities.resize(config.objects.size());
-  for (size_t k = 0; k < job.objects.size(); ++k) {
-    job.frame.probabilities[job.objects[k]] =
-        boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
-  }
-  if (!request.boundary.data.empty() || request.boundary.width > 0) {
-    job.frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
-  }
+  job.frame = requestFrame(request, job.objects, config.objects.size());
   std::lock_guard<std::mutex> lock(sync_mutex_);
   return worker_->request({std::move(job), setup, true, sync_->timeJumps()});
 }
