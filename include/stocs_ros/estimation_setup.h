@@ -18,10 +18,12 @@ struct EstimationSetup {
   NodeConfig config;
   std::vector<stocs::PreparedModel> models;  ///< in config.objects order
 
-  /// Reads `config_file` and builds or loads from the cache every model; `log` gets one line per
-  /// model. Throws stocs::InputError for a bad config or model file.
+  /// Reads `config_file` ($(dataset) in its paths standing for `dataset`) and builds or loads from
+  /// the cache every model; `log` gets one line per model. Throws stocs::InputError for a bad
+  /// config or model file.
   static std::shared_ptr<const EstimationSetup> load(
-      const std::filesystem::path& config_file, const std::function<void(const std::string&)>& log);
+      const std::filesystem::path& config_file, const std::filesystem::path& dataset,
+      const std::function<void(const std::string&)>& log);
 };
 
 }  // namespace stocs_ros

@@ -67,8 +67,10 @@ struct NodeConfig {
   std::string objectNames() const;
 };
 
-/// Reads and checks a configuration file. Throws stocs::InputError naming the file, the key and
-/// the problem: unreadable file, bad YAML, unknown key, wrong type, value out of range.
-NodeConfig loadNodeConfig(const std::filesystem::path& file);
+/// Reads and checks a configuration file; `dataset` is what $(dataset) in its paths stands for
+/// (empty: none given). Throws stocs::InputError naming the file, the key and the problem:
+/// unreadable file, bad YAML, unknown key, wrong type, value out of range, unresolvable path.
+NodeConfig loadNodeConfig(const std::filesystem::path& file,
+                          const std::filesystem::path& dataset = {});
 
 }  // namespace stocs_ros

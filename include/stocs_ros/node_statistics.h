@@ -40,6 +40,8 @@ class NodeStatistics {
   void estimated();
   void rejected(const std::string& kind);
   void serviceCall(bool success);
+  /// Time went back and the synchronizer started again (see stamp_synchronizer.h).
+  void timeJumpedBack();
 
   /// Every counter as a key-value pair; `queued[i]`: messages of input i waiting in the
   /// synchronizer. Level WARN when frames were rejected or messages dropped since the previous
@@ -65,6 +67,7 @@ class NodeStatistics {
   std::map<std::string, uint64_t> rejected_;  // by kind
   uint64_t rejected_total_ = 0;
   uint64_t service_calls_ = 0, service_failures_ = 0;
+  uint64_t time_jumps_ = 0;
   uint64_t reported_problems_ = 0;  // rejected + dropped at the previous status()
 };
 

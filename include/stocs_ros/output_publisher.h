@@ -3,8 +3,9 @@
 // <frame_prefix><object>_<k> for further instances, see instanceName), ~poses
 // (PoseArray), ~objects (ObjectPoseArray) and ~markers (MarkerArray), as the config's output
 // section selects. A result older than one already published (a service call on explicit, older
-// inputs) is not published: consumers see stamps that never go back. Called from one thread at a
-// time (the estimation worker).
+// inputs) is not published: consumers see stamps that never go back, except when time itself went
+// back (a bag loop, a restarted driver): results of the new timeline are published from its start,
+// and those of earlier timelines no more. Called from one thread at a time (the estimation worker).
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -25,7 +26,8 @@ class OutputPublisher {
   /// Advertises ~poses, ~objects and ~markers on `pnh`.
   explicit OutputPublisher(ros::NodeHandle& pnh);
 
-  void publish(const FrameResult& result, const EstimationSetup& setup);
+  /// `timeline`: how often time had gone back when the result's frame was matched.
+  void publish(const FrameResult& result, const EstimationSetup& setup, uint64_t timeline);
 
  private:
   void publishTransforms(const FrameResult& result, const EstimationSetup& setup);
@@ -39,6 +41,7 @@ class OutputPublisher {
   std::map<std::string, ros::Time> tf_stamps_;
   std::set<MarkerKey> shown_markers_;
   std::optional<ros::Time> newest_stamp_;
+  uint64_t timeline_ = 0;
 };
 
 }  // namespace stocs_ros

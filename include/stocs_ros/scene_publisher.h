@@ -1,8 +1,9 @@
 #pragma once
 // Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
 // with camera_info, the colour image, per-object probability images (or one multi-channel image, as
-// the estimator's config says), the boundary map, and the ground truth as TF frames gt_<object>
-// and, while someone subscribes, as rviz markers (ground_truth_markers.h).
+// the estimator's config says; the dataset's prob/ maps or simulated ones, as ~probability_source
+// says), the boundary map, and the ground truth as TF frames gt_<object> and, while someone
+// subscribes, as rviz markers (ground_truth_markers.h).
 // Every message of one frame carries the same stamp: the time it is published, taken once all of
 // them are built, so that latencies measured from it (scripts/bench_latency.sh) are those of the
 // receiver and not of this player's own conversions.
@@ -12,10 +13,12 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "stocs/io/bop_dataset.h"
+#include "stocs/sim/probability_source.h"
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/ground_truth_markers.h"
 #include "stocs_ros/node_config.h"
@@ -42,11 +45,17 @@ class ScenePublisher {
   void addProbabilities(const BopFrame& frame, const std_msgs::Header& header,
                         std::vector<Send>& sends);
   void publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header);
+  /// Warns, once, of an object in a frame's ground truth that the frame has no map for.
+  void warnOfMissingMap(const FrameRef& ref, const BopFrame& frame);
+  /// Whether the object may be in the frame: its ground truth has it, or the scene has none.
+  bool mayShow(const FrameRef& ref, int obj_id) const;
   std::string objectName(int obj_id) const;
 
   ros::NodeHandle pnh_;
   stocs::BopDataset dataset_;
   NodeConfig config_;  ///< the estimator's config: object names and ids, probability form
+  std::unique_ptr<stocs::ProbabilitySource> probability_source_;  ///< ~probability
+  bool warned_of_missing_map_ = false;
   std::vector<int> object_ids_;
   std::string frame_id_;
   std::string probability_encoding_;

@@ -37,7 +37,8 @@ namespace stocs_ros {
 
 class StocsNode {
  public:
-  /// Reads the configuration file named by ~config, prepares the models, subscribes and advertises.
+  /// Reads the configuration file named by ~config ($(dataset) in its paths standing for ~dataset),
+  /// prepares the models, subscribes and advertises.
   /// Throws stocs::InputError naming the problem when the configuration or a model is bad.
   explicit StocsNode(ros::NodeHandle pnh);
   ~StocsNode();
@@ -59,13 +60,18 @@ class StocsNode {
     EstimationJob job;
     std::shared_ptr<const EstimationSetup> setup;
     bool requested = false;  ///< by ~estimate, not a synchronized frame
+    uint64_t timeline = 0;   ///< time jumps back before its frame (see OutputPublisher)
   };
 
+  /// Reads the configuration file and prepares its models (start and ~reload).
+  std::shared_ptr<const EstimationSetup> loadSetup() const;
   std::shared_ptr<const EstimationSetup> setup() const;
   void subscribeInputs();
   template <class Message>
   void subscribe(size_t input, int queue_size);
   void onMessage(size_t input, const ros::Time& stamp, InputMessage message);
+  /// Counts and logs time going back, seen by the synchronizer on a message of `input`.
+  void onTimeJump(size_t input, const ros::Time& stamp);
   FrameMessages toFrame(std::vector<InputMessage>& messages, size_t objects) const;
   FrameResult process(const QueuedJob& queued);
   void onBackgroundError(std::exception_ptr error);
@@ -78,14 +84,16 @@ class StocsNode {
 
   ros::NodeHandle pnh_;
   std::string config_file_;
+  std::string dataset_;  ///< ~dataset: what $(dataset) in the configuration's paths stands for
   mutable std::mutex setup_mutex_;
   std::shared_ptr<const EstimationSetup> setup_;
 
   std::vector<Input> inputs_;
   std::vector<ros::Subscriber> subscribers_;
-  std::mutex sync_mutex_;  // guards sync_ and latest_frame_
+  std::mutex sync_mutex_;  // guards sync_, latest_frame_ and latest_timeline_
   std::unique_ptr<StampSynchronizer<InputMessage>> sync_;
   std::optional<FrameMessages> latest_frame_;
+  uint64_t latest_timeline_ = 0;                ///< time jumps back before latest_frame_
   std::unique_ptr<NodeStatistics> statistics_;  // made with the inputs' topics
   ros::Publisher statistics_pub_;
   ros::WallTimer statistics_timer_;

@@ -11,7 +11,8 @@
 namespace stocs_ros {
 
 BopFrame loadBopFrame(const stocs::BopDataset& dataset, int scene, int image,
-                      const stocs::BopFrameCamera& camera, const std::vector<int>& object_ids) {
+                      const stocs::BopFrameCamera& camera, const std::vector<int>& object_ids,
+                      const stocs::ProbabilitySource& probabilities) {
   BopFrame frame;
   const cv::Mat raw = dataset.loadDepth(scene, image);
   frame.camera = camera.intrinsics(raw.cols, raw.rows);
@@ -30,13 +31,18 @@ BopFrame loadBopFrame(const stocs::BopDataset& dataset, int scene, int image,
     }
   }
   for (int id : object_ids) {
-    cv::Mat p = std::filesystem::exists(dataset.probabilityPath(scene, image, id))
-                    ? dataset.loadProbability(scene, image, id)
-                    : cv::Mat(raw.size(), CV_32FC1, cv::Scalar(0));
+    cv::Mat p;
+    if (probabilities.available(scene, image, id)) {
+      p = probabilities.load(scene, image, id);
+    } else {
+      p = cv::Mat(raw.size(), CV_32FC1, cv::Scalar(0));
+      frame.objects_without_map.push_back(id);
+    }
     if (p.size() != raw.size()) {
-      throw stocs::InputError(fmt::format("{}: probability map is {}x{} but the depth is {}x{}",
-                                          dataset.probabilityPath(scene, image, id).string(),
-                                          p.cols, p.rows, raw.cols, raw.rows));
+      throw stocs::InputError(
+          fmt::format("{} (source '{}'): probability map is {}x{} but the depth is {}x{}",
+                      dataset.probabilityPath(scene, image, id).string(), probabilities.spec(),
+                      p.cols, p.rows, raw.cols, raw.rows));
     }
     frame.probabilities.push_back(p);
   }

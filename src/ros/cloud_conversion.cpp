@@ -79,17 +79,14 @@ stocs::CameraIntrinsics intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& 
 
 stocs::OrganizedCloud cloudFromDepthImage(const sensor_msgs::ImageConstPtr& depth,
                                           const sensor_msgs::CameraInfo& info) {
-  const cv::Mat view = imageView(depth);
-  double metres_per_unit = 0;
-  if (view.type() == CV_16UC1) {
-    metres_per_unit = 0.001;
-  } else if (view.type() == CV_32FC1) {
-    metres_per_unit = 1.0;
-  } else {
-    throw InputError(
-        fmt::format("depth image has encoding '{}'; REP 118 depth is 16UC1 (mm) or 32FC1 (m)",
-                    depth->encoding));
+  // Checked before the pixels: imageView's own error speaks of probability images.
+  const std::string& encoding = depth->encoding;
+  if (encoding != enc::TYPE_16UC1 && encoding != enc::MONO16 && encoding != enc::TYPE_32FC1) {
+    throw InputError(fmt::format(
+        "depth image has encoding '{}'; REP 118 depth is 16UC1 (mm) or 32FC1 (m)", encoding));
   }
+  const cv::Mat view = imageView(depth);
+  const double metres_per_unit = view.type() == CV_16UC1 ? 0.001 : 1.0;
   return stocs::cloudFromDepth(view, intrinsicsFromCameraInfo(info), metres_per_unit);
 }
 

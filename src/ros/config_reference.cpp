@@ -14,14 +14,19 @@ constexpr char kYamlHead[] =
     R"(# stocs_ros node configuration: every key with its default value. Generated from the parameter
 # schemas by scripts/update_config_reference.sh (docs/parameters.md has the same keys as a table);
 # edit the schemas, not this file. Paths may be absolute, relative to this file,
-# package://PKG/PATH, and may use $(env VAR) as in roslaunch.
+# package://PKG/PATH, and may use $(env VAR) as in roslaunch and $(dataset): the node's ~dataset
+# parameter, which the launch files set from their dataset:= argument.
 
 # The objects to estimate. Each needs a name (topic and TF name: letters, digits, underscores) and a
-# model; the example is object 6 (cat) of the real LM-O frame in ../shared/datasets.
+# model; the example is object 6 (cat) of the real LM-O frame (lmo-cat in ../shared/datasets), its
+# model named inside the dataset being played, so that
+#   roslaunch stocs_ros bop_playback.launch dataset:=/path/to/lmo-cat
+# needs no environment variable. Without a dataset (stocs.launch on a live camera) name models by
+# path or package:// instead.
 objects:
   - name: cat
     id: 6                      # numeric id in ~objects (default: position in this list + 1)
-    model: $(env STOCS_DATASETS)/lmo-cat/models/obj_000006.ply
+    model: $(dataset)/models/obj_000006.ply
     unit_scale: 0.001          # model units to metres (BOP models are in mm)
     mesh: ""                   # rviz mesh (package://, path); empty: markers show model samples
     # mesh_scale: 0.001        # mesh units to metres (default: unit_scale)
@@ -46,7 +51,7 @@ The estimation keys are also options of `stocs estimate`, `stocs bench` and `sto
 |---|---|---|
 | `name` | required | topic and TF name: a letter, then letters, digits and underscores |
 | `id` | position in the list + 1 | numeric id in `~objects` (the BOP `obj_id` for BOP models) |
-| `model` | required | model file (PLY, PCD): absolute, relative to the configuration file, `package://PKG/PATH`, with `$(env VAR)` |
+| `model` | required | model file (PLY, PCD): absolute, relative to the configuration file, `package://PKG/PATH`, with `$(env VAR)` and `$(dataset)` (the node's `~dataset` parameter) |
 | `unit_scale` | `0.001` | model units to metres (BOP models are in mm) |
 | `mesh` | `""` | rviz mesh resource for the markers (empty: model points) |
 | `mesh_scale` | `unit_scale` | mesh units to metres |

@@ -7,9 +7,10 @@
 namespace stocs_ros {
 
 std::shared_ptr<const EstimationSetup> EstimationSetup::load(
-    const std::filesystem::path& config_file, const std::function<void(const std::string&)>& log) {
+    const std::filesystem::path& config_file, const std::filesystem::path& dataset,
+    const std::function<void(const std::string&)>& log) {
   auto setup = std::make_shared<EstimationSetup>();
-  setup->config = loadNodeConfig(config_file);
+  setup->config = loadNodeConfig(config_file, dataset);
   const stocs::ModelCache cache(setup->config.model_cache);
   for (const ObjectConfig& o : setup->config.objects) {
     stocs::CacheReport report;

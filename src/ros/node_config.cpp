@@ -146,7 +146,7 @@ ObjectSymmetries readSymmetries(MapReader reader, float unit_scale) {
   return out;
 }
 
-ObjectConfig readObject(MapReader reader, int position, const fs::path& dir) {
+ObjectConfig readObject(MapReader reader, int position, const PathContext& paths) {
   ObjectConfig o;
   o.id = position + 1;
   std::string model, mesh;
@@ -170,8 +170,14 @@ ObjectConfig readObject(MapReader reader, int position, const fs::path& dir) {
   if (!(o.unit_scale > 0) || !(o.mesh_scale > 0)) {
     throw InputError(fmt::format("{}unit_scale and mesh_scale must be positive", where));
   }
-  o.model = resolveResourcePath(model, dir);
-  if (!mesh.empty()) o.mesh_url = resourceUrl(mesh, dir);
+  std::string key = "model";  // named in the error of a path that cannot be resolved
+  try {
+    o.model = resolveResourcePath(model, paths);
+    key = "mesh";
+    if (!mesh.empty()) o.mesh_url = resourceUrl(mesh, paths);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}{}: {}", where, key, e.what()));
+  }
   o.symmetries = readSymmetries(reader.map("symmetries"), o.unit_scale);
   reader.rejectUnknownKeys();
   return o;
@@ -331,7 +337,7 @@ std::string NodeConfig::objectNames() const {
   return out;
 }
 
-NodeConfig loadNodeConfig(const fs::path& file) {
+NodeConfig loadNodeConfig(const fs::path& file, const fs::path& dataset) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(file.string());
@@ -342,7 +348,7 @@ NodeConfig loadNodeConfig(const fs::path& file) {
   }
   NodeConfig c;
   c.file = fs::absolute(file);
-  const fs::path dir = c.file.parent_path();
+  const PathContext paths{c.file.parent_path(), dataset};
   MapReader reader(file, root, "");
 
   const YAML::Node objects = reader.node("objects");
@@ -353,7 +359,7 @@ NodeConfig loadNodeConfig(const fs::path& file) {
   std::set<int> ids;
   for (size_t k = 0; k < objects.size(); ++k) {
     c.objects.push_back(readObject(MapReader(file, objects[k], fmt::format("objects[{}]", k)),
-                                   static_cast<int>(k), dir));
+                                   static_cast<int>(k), paths));
     if (!names.insert(c.objects.back().name).second || !ids.insert(c.objects.back().id).second) {
       throw InputError(fmt::format("{}: objects[{}] repeats the name '{}' or the id {}",
                                    file.string(), k, c.objects.back().name, c.objects.back().id));
@@ -366,7 +372,7 @@ NodeConfig loadNodeConfig(const fs::path& file) {
   if (c.model_cache_setting.empty()) {
     c.model_cache = stocs::ModelCache::defaultDirectory();
   } else if (c.model_cache_setting != "none") {
-    c.model_cache = resolveResourcePath(c.model_cache_setting, dir);
+    c.model_cache = resolveResourcePath(c.model_cache_setting, paths);
   }
   reader.rejectUnknownKeys();
   return c;

@@ -68,6 +68,11 @@ void NodeStatistics::serviceCall(bool success) {
   if (!success) ++service_failures_;
 }
 
+void NodeStatistics::timeJumpedBack() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++time_jumps_;
+}
+
 uint64_t NodeStatistics::droppedTotal() const {
   uint64_t total = 0;
   for (const InputCounts& in : inputs_) {
@@ -109,6 +114,7 @@ diagnostic_msgs::DiagnosticStatus NodeStatistics::status(const std::string& name
   add("frames in progress", inProgress());
   add("service calls", service_calls_);
   add("service calls failed", service_failures_);
+  add("time jumps back", time_jumps_);
 
   const uint64_t problems = rejected_total_ + droppedTotal();
   out.level = problems > reported_problems_ ? diagnostic_msgs::DiagnosticStatus::WARN
@@ -131,7 +137,8 @@ std::string NodeStatistics::summary() const {
     line += fmt::format("; {}: {} received, dropped {}", in.topic, in.received,
                         describeDropCounts(in.dropped));
   }
-  return line + fmt::format("; {} service calls ({} failed)", service_calls_, service_failures_);
+  return line + fmt::format("; {} service calls ({} failed); time went back {} times",
+                            service_calls_, service_failures_, time_jumps_);
 }
 
 }  // namespace stocs_ros

@@ -11,7 +11,14 @@ OutputPublisher::OutputPublisher(ros::NodeHandle& pnh)
       objects_(pnh.advertise<ObjectPoseArray>("objects", 1)),
       markers_(pnh.advertise<visualization_msgs::MarkerArray>("markers", 1)) {}
 
-void OutputPublisher::publish(const FrameResult& result, const EstimationSetup& setup) {
+void OutputPublisher::publish(const FrameResult& result, const EstimationSetup& setup,
+                              uint64_t timeline) {
+  if (timeline < timeline_) return;
+  if (timeline > timeline_) {
+    timeline_ = timeline;
+    newest_stamp_.reset();
+    tf_stamps_.clear();
+  }
   if (newest_stamp_ && result.header.stamp < *newest_stamp_) return;
   newest_stamp_ = result.header.stamp;
   const OutputConfig& output = setup.config.output;

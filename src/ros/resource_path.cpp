@@ -12,6 +12,7 @@ namespace {
 
 constexpr char kPackageScheme[] = "package://";
 constexpr char kFileScheme[] = "file://";
+constexpr char kDatasetVariable[] = "$(dataset)";
 
 bool startsWith(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
@@ -39,11 +40,27 @@ std::string expandEnv(const std::string& text) {
   return out + text.substr(pos);
 }
 
+/// `text` with $(env VAR) and $(dataset) expanded.
+std::string expand(const std::string& text, const std::filesystem::path& dataset) {
+  std::string out = expandEnv(text);
+  const std::string variable = kDatasetVariable;
+  for (size_t at = out.find(variable); at != std::string::npos;
+       at = out.find(variable, at + dataset.native().size())) {
+    if (dataset.empty()) {
+      throw stocs::InputError(
+          fmt::format("path '{}' uses $(dataset), but no dataset was given: set the node's "
+                      "~dataset parameter (launch argument dataset:=FOLDER)",
+                      text));
+    }
+    out.replace(at, variable.size(), dataset.native());
+  }
+  return out;
+}
+
 }  // namespace
 
-std::filesystem::path resolveResourcePath(const std::string& text,
-                                          const std::filesystem::path& base_dir) {
-  const std::string expanded = expandEnv(text);
+std::filesystem::path resolveResourcePath(const std::string& text, const PathContext& context) {
+  const std::string expanded = expand(text, context.dataset);
   if (startsWith(expanded, kPackageScheme)) {
     const std::string rest = expanded.substr(sizeof(kPackageScheme) - 1);
     const size_t slash = rest.find('/');
@@ -60,13 +77,13 @@ std::filesystem::path resolveResourcePath(const std::string& text,
   }
   std::filesystem::path path =
       startsWith(expanded, kFileScheme) ? expanded.substr(sizeof(kFileScheme) - 1) : expanded;
-  return path.is_absolute() ? path : std::filesystem::absolute(base_dir / path);
+  return path.is_absolute() ? path : std::filesystem::absolute(context.base_dir / path);
 }
 
-std::string resourceUrl(const std::string& text, const std::filesystem::path& base_dir) {
-  const std::string expanded = expandEnv(text);
+std::string resourceUrl(const std::string& text, const PathContext& context) {
+  const std::string expanded = expand(text, context.dataset);
   if (startsWith(expanded, kPackageScheme)) return expanded;
-  return kFileScheme + resolveResourcePath(expanded, base_dir).lexically_normal().string();
+  return kFileScheme + resolveResourcePath(expanded, context).lexically_normal().string();
 }
 
 }  // namespace stocs_ros

@@ -44,6 +44,19 @@ std::pair<int, std::string> probabilityFormat(const std::string& encoding, size_
   return {CV_32F, "32FC" + n};
 }
 
+/// The probability maps the ~probability_source parameter names, as `stocs estimate --prob` takes
+/// them; simulated maps draw on the estimator's seed.
+std::unique_ptr<stocs::ProbabilitySource> probabilitySource(const ros::NodeHandle& pnh,
+                                                            const stocs::BopDataset& dataset,
+                                                            const NodeConfig& config) {
+  const std::string spec = pnh.param<std::string>("probability_source", "real");
+  try {
+    return stocs::makeProbabilitySource(spec, dataset, config.estimation.stocs.seed);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("parameter probability_source '{}': {}", spec, e.what()));
+  }
+}
+
 sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
                                    const std_msgs::Header& header) {
   sensor_msgs::CameraInfo info;
@@ -63,7 +76,8 @@ sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
 ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
     : pnh_(pnh),
       dataset_(requiredParam(pnh, "dataset"), pnh.param<std::string>("split", "test")),
-      config_(loadNodeConfig(requiredParam(pnh, "config"))),
+      config_(loadNodeConfig(requiredParam(pnh, "config"), dataset_.root())),
+      probability_source_(probabilitySource(pnh, dataset_, config_)),
       frame_id_(pnh.param<std::string>("frame_id", "camera_optical_frame")),
       probability_encoding_(pnh.param<std::string>("probability_encoding", "mono16")),
       publish_boundary_(pnh.param("boundary", true)),
@@ -117,8 +131,9 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
     }
   }
   timer_ = pnh_.createTimer(ros::Duration(1.0 / rate), &ScenePublisher::onTimer, this);
-  ROS_INFO("scene_publisher: %zu frames of %s at %.2f Hz%s", frames_.size(),
-           dataset_.root().c_str(), rate, loop_ ? ", looping" : "");
+  ROS_INFO("scene_publisher: %zu frames of %s at %.2f Hz%s, probability maps '%s'", frames_.size(),
+           dataset_.root().c_str(), rate, loop_ ? ", looping" : "",
+           probability_source_->spec().c_str());
 }
 
 void ScenePublisher::onTimer(const ros::TimerEvent&) {
@@ -132,8 +147,11 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
   }
   const FrameRef ref = frames_[next_++];
   try {
-    publish(ref, loadBopFrame(dataset_, ref.scene, ref.image, cameras_[ref.scene][ref.image],
-                              object_ids_));
+    const BopFrame frame =
+        loadBopFrame(dataset_, ref.scene, ref.image, cameras_[ref.scene][ref.image], object_ids_,
+                     *probability_source_);
+    warnOfMissingMap(ref, frame);
+    publish(ref, frame);
   } catch (const InputError& e) {
     ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d skipped: %s", ref.scene, ref.image,
                        e.what());
@@ -234,6 +252,31 @@ void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Hea
   if (truth_markers_.getNumSubscribers() > 0) {
     truth_markers_.publish(truth_marker_builder_.build(truth, header));
   }
+}
+
+void ScenePublisher::warnOfMissingMap(const FrameRef& ref, const BopFrame& frame) {
+  if (warned_of_missing_map_) return;
+  for (int id : frame.objects_without_map) {
+    if (!mayShow(ref, id)) continue;
+    ROS_WARN(
+        "scene_publisher: %s has no probability map (prob/) for object '%s' (id %d) in scene %d "
+        "image %d: its probability image is all zero and the estimator finds nothing there. "
+        "To simulate maps from the ground truth, set the parameter ~probability_source (launch "
+        "argument probability_source:=) to sim:PRESET, e.g. sim:mild; valid: %s. (Warned once.)",
+        dataset_.root().c_str(), objectName(id).c_str(), id, ref.scene, ref.image,
+        stocs::probabilitySourceHelp().c_str());
+    warned_of_missing_map_ = true;
+    return;
+  }
+}
+
+bool ScenePublisher::mayShow(const FrameRef& ref, int obj_id) const {
+  const auto scene = ground_truth_.find(ref.scene);
+  if (scene == ground_truth_.end()) return true;
+  const auto image = scene->second.find(ref.image);
+  return image != scene->second.end() &&
+         std::any_of(image->second.begin(), image->second.end(),
+                     [obj_id](const stocs::BopGtInstance& g) { return g.obj_id == obj_id; });
 }
 
 std::string ScenePublisher::objectName(int obj_id) const {

@@ -29,16 +29,18 @@ const char* toString(DropReason reason) {
     case DropReason::kUnmatched:
       return "unmatched (a newer frame was complete first)";
     case DropReason::kLate:
-      return "late (stamp at or before the last matched frame)";
+      return "late (stamp at or before a frame matched before it arrived)";
     case DropReason::kTooOld:
       return "too old (beyond max_age)";
+    case DropReason::kTimeJump:
+      return "time jump (waiting for a frame from before time went back)";
   }
   return "unknown";
 }
 
 const char* shortName(DropReason reason) {
   static constexpr const char* kShort[kDropReasonCount] = {"queue full", "unmatched", "late",
-                                                           "too old"};
+                                                           "too old", "time jump"};
   return kShort[static_cast<size_t>(reason)];
 }
 

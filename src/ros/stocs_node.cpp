@@ -4,6 +4,7 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 
+#include <algorithm>
 #include <boost/make_shared.hpp>
 
 #include "stocs/util/error.h"
@@ -56,13 +57,60 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
                      missing.empty() ? "" : "; no pose for " + missing);
 }
 
+/// Whether an optional message of an ~estimate request was filled in.
+bool given(const sensor_msgs::PointCloud2& cloud) {
+  return !cloud.data.empty() || cloud.width > 0;
+}
+bool given(const sensor_msgs::Image& image) {
+  return !image.data.empty() || image.width > 0;
+}
+bool given(const sensor_msgs::CameraInfo& info) {
+  return info.width > 0 || info.height > 0 ||
+         std::any_of(info.K.begin(), info.K.end(), [](double k) { return k != 0; });
+}
+
+/// The frame of an ~estimate request with explicit inputs: a cloud, or a depth image with its
+/// camera_info, and one probability image per requested object (`objects`, indices into the
+/// `object_count` configured objects).
+FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>& objects,
+                           size_t object_count) {
+  if (given(request.cloud) && given(request.depth)) {
+    throw InputError("both a cloud and a depth image were given; pass one of them");
+  }
+  if (given(request.depth) && !given(request.camera_info)) {
+    throw InputError("a depth image was given without its camera_info (the camera's intrinsics)");
+  }
+  if (request.probabilities.size() != objects.size()) {
+    throw InputError(
+        fmt::format("{} probability images for {} objects; give one per object, in "
+                    "the order of `objects`",
+                    request.probabilities.size(), objects.size()));
+  }
+  FrameMessages frame;
+  if (given(request.cloud)) {
+    frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
+  } else {
+    frame.depth = boost::make_shared<sensor_msgs::Image>(std::move(request.depth));
+    frame.camera_info = boost::make_shared<sensor_msgs::CameraInfo>(std::move(request.camera_info));
+  }
+  frame.probabilities.resize(object_count);
+  for (size_t k = 0; k < objects.size(); ++k) {
+    frame.probabilities[objects[k]] =
+        boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
+  }
+  if (given(request.boundary)) {
+    frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
+  }
+  return frame;
+}
+
 }  // namespace
 
 StocsNode::StocsNode(ros::NodeHandle pnh)
     : pnh_(pnh),
       config_file_(requireConfigParameter(pnh)),
-      setup_(EstimationSetup::load(config_file_,
-                                   [](const std::string& line) { ROS_INFO("%s", line.c_str()); })),
+      dataset_(pnh.param<std::string>("dataset", "")),
+      setup_(loadSetup()),
       output_(pnh_),
       service_spinner_(1, &service_queue_) {
   const NodeConfig& config = setup_->config;
@@ -93,6 +141,11 @@ StocsNode::~StocsNode() {
   reload_service_.shutdown();
   worker_.reset();
   ROS_INFO("stocs: at shutdown: %s", statistics_->summary().c_str());
+}
+
+std::shared_ptr<const EstimationSetup> StocsNode::loadSetup() const {
+  return EstimationSetup::load(config_file_, dataset_,
+                               [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
 }
 
 std::shared_ptr<const EstimationSetup> StocsNode::setup() const {
@@ -160,10 +213,12 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
   statistics_->received(input);
   const std::shared_ptr<const EstimationSetup> current = setup();
   std::vector<DroppedMessage> dropped;
-  std::optional<EstimationJob> job;
+  std::optional<QueuedJob> job;
   {
     std::lock_guard<std::mutex> lock(sync_mutex_);
+    const uint64_t jumps_before = sync_->timeJumps();
     auto match = sync_->add(input, stamp, std::move(message), dropped);
+    if (sync_->timeJumps() > jumps_before) onTimeJump(input, stamp);
     statistics_->dropped(dropped);
     if (!dropped.empty()) {
       const DroppedMessage& d = dropped.back();
@@ -175,19 +230,28 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
     if (!match) return;
     statistics_->matched();
     latest_frame_ = toFrame(match->messages, current->config.objects.size());
+    latest_timeline_ = sync_->timeJumps();
     if (!current->config.output.estimate_on_frames) {
       statistics_->kept();
       return;
     }
-    job = EstimationJob{*latest_frame_, {}, std::nullopt};
+    job = QueuedJob{{*latest_frame_, {}, std::nullopt}, current, false, latest_timeline_};
   }
-  for (size_t i = 0; i < current->config.objects.size(); ++i) job->objects.push_back(i);
-  if (worker_->offer({std::move(*job), current})) {
+  for (size_t i = 0; i < current->config.objects.size(); ++i) job->job.objects.push_back(i);
+  if (worker_->offer(std::move(*job))) {
     statistics_->replaced();
     ROS_WARN_THROTTLE(kWarnPeriod,
                       "stocs: estimation is slower than the input; a newer frame replaced one "
                       "waiting (counts on ~statistics)");
   }
+}
+
+void StocsNode::onTimeJump(size_t input, const ros::Time& stamp) {
+  statistics_->timeJumpedBack();
+  ROS_WARN(
+      "stocs: time went back: %s is stamped %.3f, at or before the last matched frame (a bag "
+      "played in a loop, a restarted camera driver or simulator?); synchronizing anew from there",
+      inputs_[input].topic.c_str(), stamp.toSec());
 }
 
 FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t objects) const {
@@ -227,7 +291,7 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
       e.pose = tracker_.track(o.object, e.pose, queued.setup->config.objects[o.object].symmetries);
     }
   }
-  output_.publish(result, *queued.setup);
+  output_.publish(result, *queued.setup, queued.timeline);
   if (!queued.requested) statistics_->estimated();
   return result;
 }
@@ -273,37 +337,27 @@ std::future<FrameResult> StocsNode::requestEstimation(
   }
   if (request.time_budget > 0) job.time_budget = request.time_budget;
 
-  const bool explicit_cloud = !request.cloud.data.empty() || request.cloud.width > 0;
-  if (!explicit_cloud) {
+  if (given(request.camera_info) && !given(request.depth)) {
+    throw InputError("a camera_info was given without a depth image");
+  }
+  if (!given(request.cloud) && !given(request.depth)) {
     if (!request.probabilities.empty()) {
-      throw InputError("probabilities were given without a cloud");
+      throw InputError("probabilities were given without a cloud or depth image");
     }
     // Taken and queued under the synchronizer's lock: a frame matched between the two could start
     // first, publish a newer stamp, and this result would then be too old for the topics.
     std::lock_guard<std::mutex> lock(sync_mutex_);
     if (!latest_frame_) {
       throw InputError(
-          "no synchronized input frame yet; publish the inputs or pass a cloud and probabilities");
+          "no synchronized input frame yet; publish the inputs or pass a cloud (or a depth image "
+          "with its camera_info) and probabilities");
     }
     job.frame = *latest_frame_;
-    return worker_->request({std::move(job), setup, true});
+    return worker_->request({std::move(job), setup, true, latest_timeline_});
   }
-  if (request.probabilities.size() != job.objects.size()) {
-    throw InputError(
-        fmt::format("{} probability images for {} objects; give one per object, in "
-                    "the order of `objects`",
-                    request.probabilities.size(), job.objects.size()));
-  }
-  job.frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
-  job.frame.probabilities.resize(config.objects.size());
-  for (size_t k = 0; k < job.objects.size(); ++k) {
-    job.frame.probabilities[job.objects[k]] =
-        boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
-  }
-  if (!request.boundary.data.empty() || request.boundary.width > 0) {
-    job.frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
-  }
-  return worker_->request({std::move(job), setup, true});
+  job.frame = requestFrame(request, job.objects, config.objects.size());
+  std::lock_guard<std::mutex> lock(sync_mutex_);
+  return worker_->request({std::move(job), setup, true, sync_->timeJumps()});
 }
 
 bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& response) {
@@ -324,8 +378,7 @@ bool StocsNode::onEstimate(Estimate::Request& request, Estimate::Response& respo
 
 bool StocsNode::onReload(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
-    const std::shared_ptr<const EstimationSetup> fresh = EstimationSetup::load(
-        config_file_, [](const std::string& line) { ROS_INFO("%s", line.c_str()); });
+    const std::shared_ptr<const EstimationSetup> fresh = loadSetup();
     checkSameInputs(setup()->config, fresh->config);
     {
       std::lock_guard<std::mutex> lock(setup_mutex_);

@@ -27,9 +27,10 @@ int run(const std::string& executable, const std::string& args, std::string& out
                                  output);
 }
 
-void expectNodeFails(const std::filesystem::path& config, const std::string& expected) {
+void expectNodeFails(const std::filesystem::path& config, const std::string& expected,
+                     const std::string& args = "") {
   std::string output;
-  EXPECT_EQ(run(STOCS_NODE_PATH, "_config:=" + config.string(), output), 1) << output;
+  EXPECT_EQ(run(STOCS_NODE_PATH, "_config:=" + config.string() + " " + args, output), 1) << output;
   EXPECT_NE(output.find(expected), std::string::npos) << "expected '" << expected << "' in:\n"
                                                       << output;
 }
@@ -60,6 +61,14 @@ TEST(BadConfig, NodeExitsWithAMessageNamingTheProblem) {
       "object 'box': model " + (dir / "nowhere.ply").string());
   expectNodeFails(writeConfig(dir, "no_objects.yaml", "objects: []\n"),
                   "'objects' must be a non-empty list");
+  // Models named inside the dataset the launch files pass (config/default.yaml does).
+  const std::filesystem::path in_dataset = writeConfig(
+      dir, "in_dataset.yaml", "objects:\n  - name: box\n    model: $(dataset)/box.ply\n");
+  expectNodeFails(in_dataset,
+                  "objects[0].model: path '$(dataset)/box.ply' uses $(dataset), but no dataset "
+                  "was given: set the node's ~dataset parameter");
+  expectNodeFails(in_dataset, "object 'box': model /no/such/dataset/box.ply: no such file",
+                  "_dataset:=/no/such/dataset");
 
   std::ofstream(dir / "empty.ply").flush();
   expectNodeFails(
@@ -94,6 +103,20 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   const std::string args = "_config:=" + config.string() + " _dataset:=" + data.string();
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0.0", output), 1) << output;
   EXPECT_NE(output.find("rate 0 Hz is outside (0, 100]"), std::string::npos) << output;
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _probability_source:=network", output), 1) << output;
+  EXPECT_NE(
+      output.find("parameter probability_source 'network': unknown probability source 'network'; "
+                  "known: 'real'"),
+      std::string::npos)
+      << output;
+  EXPECT_NE(output.find("'sim:PRESET'"), std::string::npos) << output;
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _probability_source:=sim:wild", output), 1)
+      << output;
+  EXPECT_NE(
+      output.find("parameter probability_source 'sim:wild': unknown segmentation preset 'wild'; "
+                  "known presets: "),
+      std::string::npos)
+      << output;
   // roscpp reads `_scenes:=4` as an integer, not a list.
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _scenes:=4", output), 1) << output;
   EXPECT_NE(output.find("scenes must be a list of integers"), std::string::npos) << output;
@@ -102,6 +125,32 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   ros::param::set("/" + name + "/scenes", std::vector<int>{4});
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args, output, name), 1) << output;
   EXPECT_NE(output.find("scene 4 does not exist"), std::string::npos) << output;
+}
+
+TEST(BadConfig, ScenePublisherWarnsOnceOfAFrameWithoutProbabilityMaps) {
+  const std::filesystem::path dir = stocs::test::scratchDir("publisher");
+  const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
+  const std::filesystem::path data = dir / "data";
+  stocs::test::writeSyntheticBopDataset(data);
+  std::filesystem::remove_all(data / "test" / "000000" / "prob");
+  // It plays the frame in a loop until `timeout` ends it (exit code 124).
+  std::string output;
+  EXPECT_EQ(stocs::test::runCommand(
+                "timeout 10 " + std::string(SCENE_PUBLISHER_PATH) + " __name:=" + nextNodeName() +
+                    " _config:=" + config.string() + " _dataset:=" + data.string() + " _rate:=20",
+                output),
+            124)
+      << output;
+  const std::string warning = data.string() +
+                              " has no probability map (prob/) for object 'box' (id 1) in scene 0 "
+                              "image 0: its probability image is all zero";
+  const size_t first = output.find(warning);
+  ASSERT_NE(first, std::string::npos) << output;
+  EXPECT_EQ(output.find(warning, first + 1), std::string::npos) << "warned twice:\n" << output;
+  EXPECT_NE(output.find("set the parameter ~probability_source (launch argument "
+                        "probability_source:=) to sim:PRESET, e.g. sim:mild"),
+            std::string::npos)
+      << output;
 }
 
 }  // namespace

@@ -1,12 +1,15 @@
 // The StoCS node (or nodelet) fed by the scene publisher playing a BOP frame with a known pose:
 // TF, ~poses, ~objects and ~markers agree with the ground truth, and so do the publisher's gt_
-// frame and ground-truth markers; ~estimate answers on the latest frame and on explicit inputs and
-// names bad requests; outputs keep up with the input rate without repeated TF stamps. Parameters
-// (private) say which frame and object and how close.
+// frame and ground-truth markers; ~estimate answers on the latest frame and on explicit inputs (a
+// cloud, or a depth image with its camera_info) and names bad requests; outputs keep up with the
+// input rate without repeated TF stamps. Parameters (private) say which frame and object and how
+// close.
 #include <cv_bridge/cv_bridge.h>
+#include <fmt/format.h>
 #include <geometry_msgs/PoseArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
 #include <stocs_ros/Estimate.h>
@@ -33,6 +36,7 @@ struct Expected {
   bool real_data = false;
   int scene = 0, image = 0, obj_id = 1;
   std::string object, frame_id, node, cloud_topic, probability_topic;
+  std::string depth_topic, camera_info_topic;  ///< empty: no depth image test
   double max_translation = 0.01, max_rotation = 0.1, input_rate = 1.0;
   /// When positive: ADD-S limit as a fraction of the diameter, instead of max_rotation.
   double max_adds = 0;
@@ -80,6 +84,23 @@ class NodeOutputs : public ::testing::Test {
     srv.request = std::move(request);
     EXPECT_TRUE(ros::service::call(name, srv)) << name;
     return srv.response;
+  }
+
+  /// ~estimate on explicit inputs with the header `input`: one pose, near the truth.
+  void expectOnePoseNearTruth(const Estimate::Request& request, const std_msgs::Header& input,
+                              const std::string& what) const {
+    const Estimate::Response r = callEstimate(request);
+    ASSERT_TRUE(r.success) << what << ": " << r.message;
+    ASSERT_EQ(r.result.objects.size(), 1u) << what;
+    EXPECT_EQ(r.result.header.stamp, input.stamp) << what;
+    EXPECT_EQ(r.result.header.frame_id, input.frame_id) << what;
+    expectNearTruth(poseToEigen(r.result.objects[0].pose), what);
+  }
+
+  static void expectError(Estimate::Request request, const std::string& expected) {
+    const Estimate::Response e = callEstimate(std::move(request));
+    EXPECT_FALSE(e.success) << "expected an error naming '" << expected << "'";
+    EXPECT_NE(e.message.find(expected), std::string::npos) << e.message;
   }
 
   Eigen::Isometry3d truth_;
@@ -239,17 +260,8 @@ TEST_F(NodeOutputs, ServiceEstimatesExplicitInputsAndNamesBadOnes) {
   good.objects = {g_expected.object};
   good.cloud = *cloud;
   good.probabilities = {*probability};
-  const Estimate::Response r = callEstimate(good);
-  ASSERT_TRUE(r.success) << r.message;
-  ASSERT_EQ(r.result.objects.size(), 1u);
-  EXPECT_EQ(r.result.header.stamp, cloud->header.stamp);
-  expectNearTruth(poseToEigen(r.result.objects[0].pose), "~estimate on explicit inputs");
+  expectOnePoseNearTruth(good, cloud->header, "~estimate on explicit inputs");
 
-  const auto expectError = [&](Estimate::Request request, const std::string& expected) {
-    const Estimate::Response e = callEstimate(std::move(request));
-    EXPECT_FALSE(e.success) << "expected an error naming '" << expected << "'";
-    EXPECT_NE(e.message.find(expected), std::string::npos) << e.message;
-  };
   Estimate::Request colour = good;
   colour.probabilities[0].encoding = "rgb8";
   expectError(colour, "encoding 'rgb8'");
@@ -269,6 +281,51 @@ TEST_F(NodeOutputs, ServiceEstimatesExplicitInputsAndNamesBadOnes) {
   empty_cloud.cloud.width = 1;
   empty_cloud.cloud.height = 0;
   expectError(empty_cloud, "cloud: cloud is empty");
+}
+
+TEST_F(NodeOutputs, ServiceEstimatesAnExplicitDepthImageAndNamesBadOnes) {
+  if (!g_expected.service_inputs || g_expected.depth_topic.empty()) {
+    GTEST_SKIP() << "no depth image and per-object image topics given";
+  }
+  // The publisher plays one frame in a loop: messages of different stamps hold the same images.
+  const auto depth = waitForMessage<sensor_msgs::Image>(g_expected.depth_topic, 30);
+  const auto info = waitForMessage<sensor_msgs::CameraInfo>(g_expected.camera_info_topic, 30);
+  const auto probability = waitForMessage<sensor_msgs::Image>(g_expected.probability_topic, 30);
+  const auto cloud = waitForMessage<sensor_msgs::PointCloud2>(g_expected.cloud_topic, 30);
+  ASSERT_TRUE(depth && info && probability && cloud);
+
+  Estimate::Request good;
+  good.objects = {g_expected.object};
+  good.depth = *depth;
+  good.camera_info = *info;
+  good.probabilities = {*probability};
+  expectOnePoseNearTruth(good, depth->header, "~estimate on a depth image");
+
+  Estimate::Request both = good;
+  both.cloud = *cloud;
+  expectError(both, "both a cloud and a depth image were given");
+  Estimate::Request no_info = good;
+  no_info.camera_info = sensor_msgs::CameraInfo();
+  expectError(no_info, "a depth image was given without its camera_info");
+  Estimate::Request with_cloud = good;
+  with_cloud.depth = sensor_msgs::Image();
+  with_cloud.cloud = *cloud;
+  expectError(with_cloud, "a camera_info was given without a depth image");
+  Estimate::Request narrow = good;
+  narrow.camera_info.width /= 2;
+  expectError(narrow, fmt::format("depth image: depth image is {}x{} but the camera is {}x{}",
+                                  depth->width, depth->height, depth->width / 2, depth->height));
+  Estimate::Request colour = good;
+  colour.depth.encoding = "rgb8";
+  expectError(colour,
+              "depth image: depth image has encoding 'rgb8'; REP 118 depth is 16UC1 (mm) or 32FC1 "
+              "(m)");
+  Estimate::Request info_only;
+  info_only.camera_info = *info;
+  expectError(info_only, "a camera_info was given without a depth image");
+  Estimate::Request probabilities_only;
+  probabilities_only.probabilities = {*probability};
+  expectError(probabilities_only, "probabilities were given without a cloud or depth image");
 }
 
 TEST_F(NodeOutputs, OutputsKeepUpWithTheInputWithoutRepeatedTfStamps) {
@@ -338,6 +395,8 @@ int main(int argc, char** argv) {
   pnh.getParam("node", e.node);
   pnh.getParam("cloud_topic", e.cloud_topic);
   pnh.getParam("probability_topic", e.probability_topic);
+  pnh.getParam("depth_topic", e.depth_topic);
+  pnh.getParam("camera_info_topic", e.camera_info_topic);
   pnh.getParam("max_translation", e.max_translation);
   pnh.getParam("max_rotation", e.max_rotation);
   pnh.getParam("max_adds", e.max_adds);

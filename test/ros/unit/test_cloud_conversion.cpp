@@ -118,6 +118,14 @@ TEST(CloudConversion, DepthImagesInMillimetresAndMetresGiveTheSameCloud) {
   EXPECT_THROW(cloudFromDepthImage(
                    cv_bridge::CvImage(header, "mono8", cv::Mat(3, 4, CV_8UC1)).toImageMsg(), info),
                stocs::InputError);
+  try {
+    cloudFromDepthImage(cv_bridge::CvImage(header, "rgb8", cv::Mat(3, 4, CV_8UC3)).toImageMsg(),
+                        info);
+    ADD_FAILURE() << "an rgb8 depth image was taken";
+  } catch (const stocs::InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "depth image has encoding 'rgb8'; REP 118 depth is 16UC1 (mm) or 32FC1 (m)");
+  }
   sensor_msgs::CameraInfo no_focal = info;
   no_focal.K[0] = 0;
   EXPECT_THROW(intrinsicsFromCameraInfo(no_focal), stocs::InputError);

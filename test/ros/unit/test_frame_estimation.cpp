@@ -24,7 +24,8 @@ class FrameEstimation : public ::testing::Test {
     dir_ = new std::filesystem::path(stocs::test::scratchDir("frame_estimation"));
     truth_ = stocs::test::writeSyntheticBopDataset(*dir_ / "data");
     const stocs::BopDataset dataset(*dir_ / "data");
-    frame_ = new BopFrame(loadBopFrame(dataset, 0, 0, dataset.sceneCameras(0).at(0), {1, 2}));
+    frame_ = new BopFrame(loadBopFrame(dataset, 0, 0, dataset.sceneCameras(0).at(0), {1, 2},
+                                       *stocs::makeProbabilitySource("real", dataset, 0)));
   }
   static void TearDownTestSuite() {
     delete frame_;
@@ -36,7 +37,7 @@ class FrameEstimation : public ::testing::Test {
         << "objects:\n  - {name: box, model: data/models/obj_000001.ply}\n"
         << "model_cache: cache\n"
         << input;
-    return EstimationSetup::load(*dir_ / "node.yaml", [](const std::string&) {});
+    return EstimationSetup::load(*dir_ / "node.yaml", {}, [](const std::string&) {});
   }
 
   static sensor_msgs::ImagePtr image(const std::string& encoding, const cv::Mat& pixels) {
@@ -90,6 +91,7 @@ TEST_F(FrameEstimation, LoadedFrameHoldsTheDatasetImages) {
   ASSERT_EQ(frame_->probabilities.size(), 2u);
   EXPECT_GT(cv::countNonZero(frame_->probabilities[0]), 1000);
   EXPECT_EQ(cv::countNonZero(frame_->probabilities[1]), 0);  // no map for object 2
+  EXPECT_EQ(frame_->objects_without_map, std::vector<int>{2});
   int valid = 0;
   for (int v = 0; v < frame_->depth.rows; ++v) {
     for (int u = 0; u < frame_->depth.cols; ++u) {

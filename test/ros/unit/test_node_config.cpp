@@ -33,9 +33,7 @@ std::string loadError(const std::string& text) {
 constexpr char kBox[] = "objects:\n  - name: box\n    model: box.ply\n";
 
 TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
-  setenv("STOCS_DATASETS", "/data", 1);
-  const NodeConfig c = loadNodeConfig("config/default.yaml");
-  unsetenv("STOCS_DATASETS");
+  const NodeConfig c = loadNodeConfig("config/default.yaml", "/data/lmo-cat");
   ASSERT_EQ(c.objects.size(), 1u);
   EXPECT_EQ(c.objects[0].name, "cat");
   EXPECT_EQ(c.objects[0].id, 6);
@@ -140,6 +138,16 @@ estimation:
   EXPECT_EQ(c.estimation.stocs.base.focus_exponent, 2);
 }
 
+TEST(NodeConfig, DatasetPathsResolveInsideTheGivenDataset) {
+  const std::filesystem::path file = writeConfig(
+      "objects:\n  - {name: a, model: $(dataset)/models/a.ply, mesh: "
+      "$(dataset)/meshes/a.stl}\nmodel_cache: $(dataset)/../cache\n");
+  const NodeConfig c = loadNodeConfig(file, "/data/ycbv-0000");
+  EXPECT_EQ(c.objects[0].model, "/data/ycbv-0000/models/a.ply");
+  EXPECT_EQ(c.objects[0].mesh_url, "file:///data/ycbv-0000/meshes/a.stl");
+  EXPECT_EQ(c.model_cache, "/data/ycbv-0000/../cache");
+}
+
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   const std::string box = kBox;
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -186,7 +194,13 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
        "repeats the name 'b' or the id 3"},
       {"objects:\n  - {name: a, model: a.ply, colour: red}\n", "objects[0].colour: unknown key"},
       {"objects:\n  - {name: a, model: $(env STOCS_NO_SUCH_VARIABLE)/a.ply}\n",
-       "environment variable STOCS_NO_SUCH_VARIABLE is not set"},
+       "objects[0].model: path '$(env STOCS_NO_SUCH_VARIABLE)/a.ply': environment variable "
+       "STOCS_NO_SUCH_VARIABLE is not set"},
+      {"objects:\n  - {name: a, model: $(dataset)/models/a.ply}\n",
+       "node.yaml: objects[0].model: path '$(dataset)/models/a.ply' uses $(dataset), but no "
+       "dataset was given: set the node's ~dataset parameter (launch argument dataset:=FOLDER)"},
+      {"objects:\n  - {name: a, model: a.ply, mesh: $(dataset)/a.stl}\n",
+       "objects[0].mesh: path '$(dataset)/a.stl' uses $(dataset)"},
       {"objects:\n  - {name: a, model: package://no_such_package/a.ply}\n",
        "ROS package 'no_such_package' is not found"},
       {"objects:\n  - {name: a, model: a.ply, symmetries: {discrete: [[1, 2, 3]]}}\n",

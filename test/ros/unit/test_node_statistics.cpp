@@ -28,6 +28,7 @@ TEST(NodeStatistics, CountsEveryMessageAndFrameOnce) {
   stats.replaced();
   stats.serviceCall(true);
   stats.serviceCall(false);
+  stats.timeJumpedBack();
 
   std::map<std::string, std::string> v = values(stats.status("/stocs", {1, 0}));
   EXPECT_EQ(v["received /cloud"], "5");
@@ -42,6 +43,7 @@ TEST(NodeStatistics, CountsEveryMessageAndFrameOnce) {
   EXPECT_EQ(v["frames in progress"], "1");
   EXPECT_EQ(v["service calls"], "2");
   EXPECT_EQ(v["service calls failed"], "1");
+  EXPECT_EQ(v["time jumps back"], "1");
 
   stats.rejected("cloud");
   v = values(stats.status("/stocs", {1, 0}));
@@ -54,6 +56,7 @@ TEST(NodeStatistics, CountsEveryMessageAndFrameOnce) {
       << stats.summary();
   EXPECT_NE(stats.summary().find("/cloud: 5 received, dropped 1 unmatched"), std::string::npos)
       << stats.summary();
+  EXPECT_NE(stats.summary().find("time went back 1 times"), std::string::npos) << stats.summary();
 }
 
 TEST(NodeStatistics, WarnsOncePerNewProblem) {
