@@ -35,7 +35,7 @@ step() {
   PATTERNS+=("${*:4}")
 }
 
-step env 0 'export PATH=/usr/bin:$PATH STOCS_DATASETS=/path/to/datasets'
+step env 0 'export PATH=/usr/bin:$PATH'
 step env 0 'source ../stocs_ros_ws/devel/setup.bash'
 step start 180 'roslaunch stocs_ros bop_playback.launch dataset:=* rviz:=true' \
   'stocs: 1 objects \(cat\)' 'OpenGl version: [0-9]'
@@ -46,12 +46,20 @@ step run 30 'rostopic echo -n 1 /stocs/statistics' \
   'key: "service calls"'
 step start 120 'roslaunch stocs_ros stocs.launch config:=* cloud:=*' \
   'stocs: 1 objects \(cat\) from .*; waiting for 2 synchronized inputs'
+step skip 0 'rosbag play -l' 'a mention in the text of the bag command below'
+step start 60 'roslaunch stocs_ros scene_publisher.launch dataset:=*' \
+  'scene_publisher: [0-9]+ frames of .*lmo-cat'
+step run 60 'rosbag record -O lmo-cat.bag --duration=5 *' 'Recording to'
+step start 120 'roslaunch stocs_ros stocs.launch dataset:=* use_sim_time:=true' \
+  'stocs: 1 objects \(cat\) from .*; waiting for'
+step also 60 'rosbag play -l --clock lmo-cat.bag' 'Bag Time'
 
 # README's placeholders and what they stand for here.
 PLACEHOLDERS=(
   "/path/to/datasets=${STOCS_DATASETS:-}"
   "../stocs_ros_ws=$WS"
-  "/path/to/objects.yaml=$REPO/config/default.yaml"
+  "/path/to/objects.yaml=$OUT/objects.yaml"
+  "lmo-cat.bag=$OUT/lmo-cat.bag"
 )
 MIN_UP=5
 FAILURE='\[(ERROR|FATAL)\]|^[0-9.]+ (ERROR|FATAL) |has died|Traceback|Segmentation fault'
@@ -220,6 +228,9 @@ fi
 
 rm -rf "$OUT"
 mkdir -p "$OUT"
+# "Your own configuration" of the live-camera example: the default one with the cat's model named
+# by its path, as a configuration without a dataset to play names it.
+sed "s|\$(dataset)|$STOCS_DATASETS/lmo-cat|" "$REPO/config/default.yaml" > "$OUT/objects.yaml"
 trap stop_background EXIT
 # Nodes' output as a terminal shows it, line by line, rather than in blocks when a file takes it;
 # ROS's files of the foreground commands in the output folder.
