@@ -54,6 +54,7 @@ step start 120 'roslaunch stocs_ros stocs.launch dataset:=* use_sim_time:=true' 
   'stocs: 1 objects \(cat\) from .*; waiting for'
 step also 60 'rosbag play -l --clock lmo-cat.bag' 'Bag Time'
 
+OUT="$REPO/build/readme_ros"
 # README's placeholders and what they stand for here.
 PLACEHOLDERS=(
   "/path/to/datasets=${STOCS_DATASETS:-}"
@@ -63,7 +64,6 @@ PLACEHOLDERS=(
 )
 MIN_UP=5
 FAILURE='\[(ERROR|FATAL)\]|^[0-9.]+ (ERROR|FATAL) |has died|Traceback|Segmentation fault'
-OUT="$REPO/build/readme_ros"
 # What start and also left running: process (group leader), folder, command, start time.
 BG_PIDS=() BG_DIRS=() BG_COMMANDS=() BG_STARTED=()
 
