@@ -52,10 +52,26 @@ target_link_libraries(stocs_core INTERFACE
 set_target_properties(stocs_core PROPERTIES EXPORT_NAME core)
 add_library(stocs::core ALIAS stocs_core)
 
+get_property(modules GLOBAL PROPERTY STOCS_CORE_MODULES)
 if(STOCS_CATKIN)
-  get_property(modules GLOBAL PROPERTY STOCS_CORE_MODULES)
   install(TARGETS ${modules}
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
   install(DIRECTORY include/stocs/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/stocs)
+endif()
+
+# A plain CMake build installs the core for find_package(stocs) (examples/estimate_pose).
+if(NOT STOCS_CATKIN)
+  include(GNUInstallDirs)
+  include(CMakePackageConfigHelpers)
+  install(TARGETS ${modules} stocs_core EXPORT stocsTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY include/stocs/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stocs)
+  set(STOCS_CONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/stocs)
+  install(EXPORT stocsTargets NAMESPACE stocs:: DESTINATION ${STOCS_CONFIG_DIR})
+  configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/stocsConfig.cmake.in
+    ${PROJECT_BINARY_DIR}/stocsConfig.cmake INSTALL_DESTINATION ${STOCS_CONFIG_DIR})
+  install(FILES ${PROJECT_BINARY_DIR}/stocsConfig.cmake DESTINATION ${STOCS_CONFIG_DIR})
 endif()

@@ -81,6 +81,12 @@ ASAN_OPTIONS=detect_leaks=1:halt_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:hal
   ctest --test-dir "$CORE" -j"$JOBS" --output-on-failure
 stage_done "the core's tests"
 
+# The C++ interface from outside: the core installed, examples/estimate_pose built against it as a
+# plain CMake project (find_package(stocs)) and run on a generated scene. The sanitizer build's
+# libraries need the sanitizers at link time too.
+"$REPO/scripts/check_cpp_example.sh" "$CORE" "$SANITIZE"
+stage_done "the C++ example"
+
 if [ "${STOCS_SKIP_FUZZ:-0}" != 1 ]; then
   # 9 targets x 15 s plus the fuzz build: 378 s on 2 cores from an empty ccache (BENCHMARKS.md,
   # "Twelfth session"), seconds of building when warm.

@@ -1,6 +1,7 @@
 #pragma once
 // One estimation on one input frame: converts the frame's messages (see cloud_conversion.h and
-// image_conversion.h) and runs the core's estimateObject for each requested object.
+// image_conversion.h) into a stocs::Frame and runs the core's frame loop (stocs::estimateFrame) on
+// the requested objects.
 
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
@@ -10,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/estimation/pipeline.h"
+#include "stocs/estimation/frame.h"
 #include "stocs_ros/estimation_setup.h"
 
 namespace stocs_ros {
@@ -37,7 +38,7 @@ struct EstimationJob {
 
 struct ObjectOutcome {
   size_t object;  ///< index into config.objects
-  stocs::ObjectEstimate estimate;
+  stocs::PoseEstimate estimate;
 };
 
 struct FrameResult {

@@ -126,7 +126,8 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
   std::stable_sort(taken.begin(), taken.end(), higherScore);
   std::vector<InstancePose> instances;
   for (const Hypothesis& h : taken) {
-    instances.push_back({h.pose, c.scorer.detail(c.model, h.pose, h.region), h.refined, h.region});
+    const LcpDetail detail = c.scorer.detail(c.model, h.pose, h.region);
+    instances.push_back({h.pose, detail.score, detail, h.refined, h.region});
   }
   return instances;
 }

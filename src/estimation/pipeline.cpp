@@ -25,16 +25,15 @@ void PipelineParams::validate() const {
   schema().validate(*this);
 }
 
-ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
-                              const cv::Mat& probability, const PreparedModel& model,
-                              const PipelineParams& params, const cv::Mat* boundary_map,
-                              const CameraIntrinsics* camera) {
+PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
+                            const PreparedModel& model, const PipelineParams& params,
+                            const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
-  ObjectEstimate result;
-  result.segment_points = segment.size();
+  const double segment_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
   if (params.stocs.free_space.enabled && !camera) {
     try {
@@ -48,8 +47,10 @@ ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
   if (params.stocs.free_space.enabled && camera) {
     free_space.emplace(cloud, *camera, params.stocs.free_space);
   }
-  result.estimate =
+  PoseEstimate result =
       StocsEstimator(model, params.stocs).estimate(segment, free_space ? &*free_space : nullptr);
+  result.segment_points = segment.size();
+  result.stages.segment = segment_seconds;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -248,6 +248,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   result.found = true;
   const InstancePose& best = result.instances.front();
   result.pose = best.pose;
+  result.score = best.score;
   result.lcp = best.lcp;
   result.refined = best.refined;
   result.region = best.region;

@@ -22,21 +22,25 @@ Eigen::Isometry3f refine(const ObjectModel& model, const SoftSegment& segment,
 
 }  // namespace
 
-MethodResult BaselineMethod::estimate(const MethodInput& in) {
+PoseEstimate BaselineMethod::estimate(const ObjectInput& in) {
   const auto start = std::chrono::steady_clock::now();
   in.params->validate();
   const SoftSegment segment = buildHardSegment(in, threshold_);
-  MethodResult result;
+  PoseEstimate result;
   result.segment_points = segment.size();
   if (segment.size() >= kMinSegmentPoints) {
     const std::optional<BaselineHypothesis> h = search(segment, in);
     if (h && h->pose.matrix().allFinite()) {
       result.found = true;
-      result.score = h->score;
+      result.score = static_cast<float>(h->score);
       result.hypotheses = h->hypotheses;
       result.pose = in.params->stocs.icp.enabled
                         ? refine(in.model->model, segment, h->pose, in.params->stocs)
                         : h->pose;
+      InstancePose only;
+      only.pose = result.pose;
+      only.score = result.score;
+      result.instances.push_back(only);
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

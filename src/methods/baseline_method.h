@@ -30,13 +30,13 @@ class BaselineMethod : public PoseMethod {
   /// Hard segment, search(), then the shared refinement. Throws InputError for invalid parameters
   /// or mismatched inputs; any other failure (empty or tiny segment, no pose, a non-finite pose)
   /// gives found = false.
-  MethodResult estimate(const MethodInput& input) final;
+  PoseEstimate estimate(const ObjectInput& input) final;
 
  protected:
   /// The method's own search on the hard segment (at least kMinSegmentPoints points); nothing
   /// when it finds no pose.
   virtual std::optional<BaselineHypothesis> search(const SoftSegment& segment,
-                                                   const MethodInput& input) = 0;
+                                                   const ObjectInput& input) = 0;
 
  private:
   float threshold_;

@@ -86,7 +86,7 @@ unsigned fourPcsSeed(uint64_t seed) {
 }
 
 std::optional<BaselineHypothesis> alignFourPcs(FourPcs& aligner, const SoftSegment& segment,
-                                               const MethodInput& input) {
+                                               const ObjectInput& input) {
   const ObjectModel& model = input.model->model;
   const StocsParams& budget = input.params->stocs;
   // Every pair of source points is compared per base and every candidate validated on all of them,

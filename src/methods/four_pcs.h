@@ -53,6 +53,6 @@ unsigned fourPcsSeed(uint64_t seed);
 /// Returns the final transformation with score = 1 - PCL's fitness score, or nothing when PCL
 /// found no candidate.
 std::optional<BaselineHypothesis> alignFourPcs(FourPcs& aligner, const SoftSegment& segment,
-                                               const MethodInput& input);
+                                               const ObjectInput& input);
 
 }  // namespace stocs

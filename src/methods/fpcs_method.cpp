@@ -14,7 +14,7 @@ class FpcsMethod : public BaselineMethod {
 
  protected:
   std::optional<BaselineHypothesis> search(const SoftSegment& segment,
-                                           const MethodInput& input) override {
+                                           const ObjectInput& input) override {
     Reseeded<FourPcs> aligner(fourPcsSeed(input.params->stocs.seed));
     return alignFourPcs(aligner, segment, input);
   }

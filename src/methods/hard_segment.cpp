@@ -16,9 +16,10 @@ SoftSegmentParams hardSegmentParams(SoftSegmentParams params) {
   return params;
 }
 
-SoftSegment buildHardSegment(const MethodInput& input, float threshold) {
+SoftSegment buildHardSegment(const ObjectInput& input, float threshold) {
   return buildSoftSegment(*input.cloud, hardProbability(*input.probability, threshold),
-                          input.focal_px, hardSegmentParams(input.params->segment));
+                          static_cast<float>(input.camera->fx),
+                          hardSegmentParams(input.params->segment));
 }
 
 }  // namespace stocs

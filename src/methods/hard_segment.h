@@ -17,6 +17,6 @@ cv::Mat hardProbability(const cv::Mat& probability, float threshold);
 SoftSegmentParams hardSegmentParams(SoftSegmentParams params);
 
 /// The hard segment of the method input's probability image.
-SoftSegment buildHardSegment(const MethodInput& input, float threshold);
+SoftSegment buildHardSegment(const ObjectInput& input, float threshold);
 
 }  // namespace stocs

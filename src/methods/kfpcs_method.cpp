@@ -43,7 +43,7 @@ class KfpcsMethod : public BaselineMethod {
 
  protected:
   std::optional<BaselineHypothesis> search(const SoftSegment& segment,
-                                           const MethodInput& input) override {
+                                           const ObjectInput& input) override {
     SeededKfpcs aligner(fourPcsSeed(input.params->stocs.seed));
     return alignFourPcs(aligner, segment, input);
   }

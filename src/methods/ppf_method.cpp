@@ -82,7 +82,7 @@ class PpfMethod : public BaselineMethod {
 
  protected:
   std::optional<BaselineHypothesis> search(const SoftSegment& segment,
-                                           const MethodInput& input) override {
+                                           const ObjectInput& input) override {
     cv::ppf_match_3d::PPF3DDetector* d = detector(input.model->model);
     if (!d || !hasVolume(boundingBox(segment.points))) return std::nullopt;
     std::vector<cv::ppf_match_3d::Pose3DPtr> poses;  // best first

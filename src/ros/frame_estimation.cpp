@@ -54,38 +54,42 @@ const std_msgs::Header& FrameMessages::header() const {
   return cloud ? cloud->header : depth->header;
 }
 
-FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup) {
-  const FrameMessages& frame = job.frame;
-  const NodeConfig& config = setup.config;
+/// The frame's messages converted: cloud, intrinsics, probability maps by object name, boundary.
+stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
+  const FrameMessages& messages = job.frame;
+  stocs::Frame frame;
   // The intrinsics once per frame: every object's free-space check projects with them.
-  stocs::OrganizedCloud cloud;
-  stocs::CameraIntrinsics camera;
-  if (frame.cloud) {
-    cloud = naming("cloud", [&] { return cloudFromMsg(*frame.cloud); });
-    camera = naming("cloud", [&] { return intrinsicsFromCloud(cloud); });
+  if (messages.cloud) {
+    frame.cloud = naming("cloud", [&] { return cloudFromMsg(*messages.cloud); });
+    frame.camera = naming("cloud", [&] { return intrinsicsFromCloud(frame.cloud); });
   } else {
-    cloud =
-        naming("depth image", [&] { return cloudFromDepthImage(frame.depth, *frame.camera_info); });
-    camera = intrinsicsFromCameraInfo(*frame.camera_info);
+    frame.cloud = naming(
+        "depth image", [&] { return cloudFromDepthImage(messages.depth, *messages.camera_info); });
+    frame.camera = intrinsicsFromCameraInfo(*messages.camera_info);
   }
-  const auto focal_px = static_cast<float>(camera.fx);
   const std::vector<cv::Mat> probability = probabilities(job, config);
-  const cv::Mat boundary =
-      frame.boundary ? naming("boundary image", [&] { return boundaryFromImage(frame.boundary); })
-                     : cv::Mat();
+  for (size_t i = 0; i < probability.size(); ++i) {
+    if (!probability[i].empty()) frame.probabilities[config.objects[i].name] = probability[i];
+  }
+  if (messages.boundary) {
+    frame.boundary = naming("boundary image", [&] { return boundaryFromImage(messages.boundary); });
+  }
+  return frame;
+}
+
+FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup) {
+  const NodeConfig& config = setup.config;
+  const stocs::Frame frame = convertFrame(job, config);
   stocs::PipelineParams params = config.estimation;
   if (job.time_budget) params.stocs.time_budget = *job.time_budget;
+  std::vector<stocs::FrameObject> objects;
+  for (size_t i : job.objects) objects.push_back({config.objects[i].name, &setup.models[i]});
 
   FrameResult result;
-  result.header = frame.header();
-  for (size_t i : job.objects) {
-    const std::string what = fmt::format("object '{}'", config.objects[i].name);
-    if (probability[i].empty()) throw InputError(what + ": the frame has no probability image");
-    result.objects.push_back({i, naming(what, [&] {
-                                return stocs::estimateObject(
-                                    cloud, focal_px, probability[i], setup.models[i], params,
-                                    boundary.empty() ? nullptr : &boundary, &camera);
-                              })});
+  result.header = job.frame.header();
+  std::vector<stocs::ObjectResult> estimates = stocs::estimateFrame(frame, objects, params);
+  for (size_t k = 0; k < estimates.size(); ++k) {
+    result.objects.push_back({job.objects[k], std::move(estimates[k].estimate)});
   }
   return result;
 }

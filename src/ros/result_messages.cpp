@@ -64,14 +64,14 @@ visualization_msgs::Marker labelMarker(const FoundPose& f, const EstimationSetup
 std::vector<FoundPose> foundPoses(const FrameResult& result) {
   std::vector<FoundPose> out;
   for (const ObjectOutcome& o : result.objects) {
-    const stocs::PoseEstimate& e = o.estimate.estimate;
+    const stocs::PoseEstimate& e = o.estimate;
     if (!e.found) continue;
     if (e.instances.empty()) {
-      out.push_back({&o, 0, e.pose, e.lcp.score});
+      out.push_back({&o, 0, e.pose, e.score});
       continue;
     }
     for (size_t k = 0; k < e.instances.size(); ++k) {
-      out.push_back({&o, k, e.instances[k].pose, e.instances[k].lcp.score});
+      out.push_back({&o, k, e.instances[k].pose, e.instances[k].score});
     }
   }
   return out;
@@ -93,7 +93,7 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
     p.score = f.score;
     p.pose = poseMsg(f.pose);
     p.estimation_time = f.outcome->estimate.seconds;
-    p.hypotheses_verified = f.outcome->estimate.estimate.hypotheses;
+    p.hypotheses_verified = f.outcome->estimate.hypotheses;
     out.objects.push_back(p);
   }
   return out;

@@ -47,7 +47,7 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
   std::string missing;
   size_t found = 0;
   for (const ObjectOutcome& o : result.objects) {
-    if (o.estimate.estimate.found) {
+    if (o.estimate.found) {
       ++found;
     } else {
       missing += (missing.empty() ? "" : ", ") + config.objects[o.object].name;
@@ -286,7 +286,7 @@ FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t obj
 FrameResult StocsNode::process(const QueuedJob& queued) {
   FrameResult result = estimateFrame(queued.job, *queued.setup);
   for (ObjectOutcome& o : result.objects) {
-    stocs::PoseEstimate& e = o.estimate.estimate;
+    stocs::PoseEstimate& e = o.estimate;
     if (e.found) {
       e.pose = tracker_.track(o.object, e.pose, queued.setup->config.objects[o.object].symmetries);
     }

@@ -12,6 +12,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "object_runs.h"
+#include "stocs/estimation/frame.h"
 #include "stocs/eval/metric_summary.h"
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/io/bop_dataset.h"
@@ -62,167 +63,237 @@ NearestInstance nearestInstance(const std::vector<Eigen::Vector3f>& points_mm,
   return best;
 }
 
+/// An image of the dataset and the objects the run estimates in it.
+struct ImageTargets {
+  int scene = 0, im = 0;
+  const std::vector<BopGtInstance>* instances = nullptr;  ///< the image's ground truth
+  std::set<int> objects;
+  BopFrameCamera camera;
+};
+
+/// One object's estimate in an image, its times the medians over the repeats.
+struct TimedResult {
+  int obj = 0;
+  PoseEstimate estimate;
+  double cpu_seconds = 0;
+};
+
+/// `stocs estimate`: every image of the selected scenes in turn, each through the frame loop
+/// (estimateFrame) with the chosen method; BOP results and per-object rows at the end.
+class EstimateRun {
+ public:
+  explicit EstimateRun(const EstimateOptions& o)
+      : o_(o),
+        method_(makeMethod(o.method, o.method_options)),
+        dataset_(o.dataset, o.split),
+        probabilities_(makeProbabilitySource(o.prob, dataset_, o.params.stocs.seed)),
+        info_(dataset_.modelsInfo()),
+        cache_(o.model.cache()),
+        warm_up_(o.warm_up) {}
+
+  int run() {
+    for (int scene : scenes()) {
+      const std::map<int, BopFrameCamera> cameras = dataset_.sceneCameras(scene);
+      for (const auto& [im, instances] : dataset_.sceneGroundTruth(scene)) {
+        const std::optional<ImageTargets> image = targets(scene, im, instances, cameras);
+        if (image) report(*image, estimateImage(*image));
+      }
+    }
+    if (targets_ == 0) {
+      throw InputError(fmt::format(
+          "dataset {}: no (image, object) pair of the selected scenes and objects has a "
+          "probability map from source '{}'",
+          o_.dataset, o_.prob));
+    }
+    writeBopResults(o_.out, results_);
+    if (!o_.per_object.empty()) writeObjectRuns(o_.per_object, object_runs_);
+    fmt::print(stderr, "{} of {} objects found; results in {}\n", found_, targets_, o_.out);
+    return 0;
+  }
+
+ private:
+  std::vector<int> scenes() const {
+    const std::vector<int> scenes = o_.scenes.empty() ? dataset_.sceneIds() : o_.scenes;
+    for (int s : scenes) {
+      if (!std::filesystem::is_directory(dataset_.sceneDir(s))) {
+        throw InputError(fmt::format("dataset {}: scene {} does not exist", o_.dataset, s));
+      }
+    }
+    return scenes;
+  }
+
+  /// The objects of the image's ground truth that are selected and have a map; nothing when none.
+  std::optional<ImageTargets> targets(int scene, int im,
+                                      const std::vector<BopGtInstance>& instances,
+                                      const std::map<int, BopFrameCamera>& cameras) const {
+    ImageTargets image{scene, im, &instances, {}, {}};
+    for (const BopGtInstance& g : instances) {
+      if ((o_.objects.empty() || std::count(o_.objects.begin(), o_.objects.end(), g.obj_id)) &&
+          probabilities_->available(scene, im, g.obj_id)) {
+        image.objects.insert(g.obj_id);
+      }
+    }
+    if (image.objects.empty()) return std::nullopt;
+    const auto cam = cameras.find(im);
+    if (cam == cameras.end()) {
+      throw InputError(fmt::format("{}: no entry for image {}",
+                                   (dataset_.sceneDir(scene) / "scene_camera.json").string(), im));
+    }
+    image.camera = cam->second;
+    return image;
+  }
+
+  /// The object's model, prepared (or loaded from the cache) on its first use.
+  const PreparedModel& model(int obj) {
+    auto it = models_.find(obj);
+    if (it != models_.end()) return it->second;
+    CacheReport report;
+    PreparedModel& m = models_[obj] = cache_.load(dataset_.modelPath(obj).string(),
+                                                  o_.model.unit_scale, o_.params.model, &report);
+    fmt::print(stderr, "model {}: {} samples, PPF map {:.2f} MB, {}{}\n", obj, m.model.size(),
+               m.ppf_map.memoryBytes() / 1e6, toString(report.outcome),
+               report.detail.empty() ? "" : " (" + report.detail + ")");
+    method_->prepare(m);
+    return m;
+  }
+
+  /// The image's raw data (depth, maps, boundary), loaded before any clock starts (BOP's
+  /// definition of the time), as a frame without its cloud.
+  Frame rawFrame(const ImageTargets& image, cv::Mat& depth) {
+    Frame frame;
+    for (int obj : image.objects) {
+      model(obj);
+      const cv::Mat map = probabilities_->load(image.scene, image.im, obj);
+      frame.probabilities[std::to_string(obj)] = map;
+    }
+    depth = dataset_.loadDepth(image.scene, image.im);
+    for (int obj : image.objects) {
+      const cv::Mat& map = frame.probabilities[std::to_string(obj)];
+      if (map.size() != depth.size()) {
+        throw InputError(fmt::format("{}: probability map is {}x{} but the depth image is {}x{}",
+                                     dataset_.probabilityPath(image.scene, image.im, obj).string(),
+                                     map.cols, map.rows, depth.cols, depth.rows));
+      }
+    }
+    if (o_.boundaries == "auto") frame.boundary = dataset_.loadBoundary(image.scene, image.im);
+    frame.camera = image.camera.intrinsics(depth.cols, depth.rows);
+    return frame;
+  }
+
+  /// Every object of the image, o.repeats times (each repeat converts the cloud again): poses of
+  /// the first repeat, times the medians; sets image_seconds_ (BOP's time of the image).
+  std::vector<TimedResult> estimateImage(const ImageTargets& image) {
+    cv::Mat depth;
+    Frame frame = rawFrame(image, depth);
+    std::vector<FrameObject> objects;
+    for (int obj : image.objects) objects.push_back({std::to_string(obj), &models_.at(obj)});
+    const ObjectEstimator estimate = [this](const ObjectInput& in) {
+      return method_->estimate(in);
+    };
+    const double metres_per_unit = image.camera.depth_scale / 1000.0;
+    if (warm_up_) {
+      // The process's first estimate pays once for thread pools and first-touch memory, which a
+      // running node pays at start-up: it runs here, untimed and discarded.
+      frame.cloud = cloudFromDepth(depth, *frame.camera, metres_per_unit);
+      estimateFrame(frame, {objects.front()}, o_.params, estimate);
+      fmt::print(stderr, "warm-up: object {} of scene {} image {} estimated once, untimed\n",
+                 objects.front().name, image.scene, image.im);
+      warm_up_ = false;
+    }
+    std::vector<TimedResult> timed(objects.size());
+    std::vector<std::vector<double>> wall(objects.size()), cpu(objects.size());
+    std::vector<double> image_times;
+    for (int repeat = 0; repeat < o_.repeats; ++repeat) {
+      const auto start = std::chrono::steady_clock::now();
+      frame.cloud = cloudFromDepth(depth, *frame.camera, metres_per_unit);
+      std::vector<ObjectResult> results = estimateFrame(frame, objects, o_.params, estimate);
+      image_times.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      for (size_t k = 0; k < results.size(); ++k) {
+        wall[k].push_back(results[k].estimate.seconds);
+        cpu[k].push_back(results[k].cpu_seconds);
+        if (repeat == 0) timed[k] = {std::stoi(results[k].name), std::move(results[k].estimate)};
+      }
+    }
+    for (size_t k = 0; k < timed.size(); ++k) {
+      timed[k].estimate.seconds = quantile(wall[k], 0.5);
+      timed[k].cpu_seconds = quantile(cpu[k], 0.5);
+    }
+    image_seconds_ = quantile(image_times, 0.5);
+    return timed;
+  }
+
+  /// Writes the image's results and prints a line per object.
+  void report(const ImageTargets& image, const std::vector<TimedResult>& timed) {
+    for (const TimedResult& t : timed) {
+      const PoseEstimate& e = t.estimate;
+      ++targets_;
+      object_runs_.push_back({{image.scene, image.im, t.obj},
+                              e.found,
+                              e.seconds,
+                              t.cpu_seconds,
+                              e.segment_points,
+                              e.hypotheses});
+      const std::string head = fmt::format("scene {} image {} object {}: segment {} points, ",
+                                           image.scene, image.im, t.obj, e.segment_points);
+      if (!e.found) {
+        fmt::print(stderr, "{}no pose found ({:.3f} s)\n", head, e.seconds);
+        continue;
+      }
+      ++found_;
+      fmt::print(stderr, "{}{}\n", head, describePoses(image, t.obj, e));
+    }
+  }
+
+  /// The object's poses as result rows, described with their ADD-S to the nearest instance.
+  std::string describePoses(const ImageTargets& image, int obj, const PoseEstimate& e) {
+    const std::vector<BopGtInstance>& instances = *image.instances;
+    const auto it = info_.find(obj);
+    const double diameter = it != info_.end() ? it->second.diameter_mm : 0;
+    std::vector<Eigen::Vector3f> points_mm;  // once for all poses of the target
+    for (const Eigen::Vector3f& p : models_.at(obj).model.points) points_mm.push_back(p * 1000.0f);
+    std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
+    std::string line;
+    for (size_t k = 0; k < e.instances.size(); ++k) {
+      const RigidPose pose = toBop(e.instances[k].pose);
+      results_.push_back(
+          {image.scene, image.im, obj, e.instances[k].score, pose.R, pose.t, image_seconds_});
+      if (k > 0) line += fmt::format("\n  instance {}: ", k);
+      line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", e.instances[k].score,
+                          pose.t.x(), pose.t.y(), pose.t.z());
+      if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
+      const NearestInstance near = nearestInstance(points_mm, pose, instances, obj);
+      if (near.index < 0 || diameter <= 0) continue;
+      line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}", near.adds,
+                          100.0 * near.adds / diameter, near.index);
+      if (near.adds < 0.1 * diameter) recalled.insert(near.index);
+    }
+    const auto truths = std::count_if(instances.begin(), instances.end(),
+                                      [&](const BopGtInstance& g) { return g.obj_id == obj; });
+    if (e.instances.size() > 1 && truths > 0) {
+      line += fmt::format("\n  instance recall {} of {} ground-truth instances", recalled.size(),
+                          truths);
+    }
+    return line;
+  }
+
+  const EstimateOptions& o_;
+  const std::unique_ptr<PoseMethod> method_;
+  const BopDataset dataset_;
+  const std::unique_ptr<ProbabilitySource> probabilities_;
+  const std::map<int, BopObjectInfo> info_;
+  const ModelCache cache_;
+  bool warm_up_;
+  std::map<int, PreparedModel> models_;
+  std::vector<BopResult> results_;
+  std::vector<ObjectRun> object_runs_;
+  double image_seconds_ = 0;
+  int targets_ = 0, found_ = 0;
+};
+
 int runEstimate(const EstimateOptions& o) {
   validatePipelineOptions(o.params);
-  const std::unique_ptr<PoseMethod> method = makeMethod(o.method, o.method_options);
-  const BopDataset dataset(o.dataset, o.split);
-  const std::unique_ptr<ProbabilitySource> probabilities =
-      makeProbabilitySource(o.prob, dataset, o.params.stocs.seed);
-  const std::map<int, BopObjectInfo> info = dataset.modelsInfo();
-  const ModelCache cache = o.model.cache();
-  std::vector<int> scenes = o.scenes.empty() ? dataset.sceneIds() : o.scenes;
-  for (int s : scenes) {
-    if (!std::filesystem::is_directory(dataset.sceneDir(s))) {
-      throw InputError(fmt::format("dataset {}: scene {} does not exist", o.dataset, s));
-    }
-  }
-  const std::set<int> wanted(o.objects.begin(), o.objects.end());
-  std::map<int, PreparedModel> models;
-  std::vector<BopResult> results;
-  std::vector<ObjectRun> object_runs;
-  int targets = 0, found = 0;
-  bool warm_up = o.warm_up;
-
-  for (int scene : scenes) {
-    const std::map<int, BopFrameCamera> cameras = dataset.sceneCameras(scene);
-    for (const auto& [im, instances] : dataset.sceneGroundTruth(scene)) {
-      std::set<int> objects;
-      for (const BopGtInstance& g : instances) {
-        if ((wanted.empty() || wanted.count(g.obj_id)) &&
-            probabilities->available(scene, im, g.obj_id)) {
-          objects.insert(g.obj_id);
-        }
-      }
-      if (objects.empty()) continue;
-      const auto cam = cameras.find(im);
-      if (cam == cameras.end()) {
-        throw InputError(fmt::format("{}: no entry for image {}",
-                                     (dataset.sceneDir(scene) / "scene_camera.json").string(), im));
-      }
-      // Raw data first: models and images are loaded before the clock starts (BOP's definition).
-      std::map<int, cv::Mat> probability;
-      for (int obj : objects) {
-        if (!models.count(obj)) {
-          CacheReport report;
-          models[obj] = cache.load(dataset.modelPath(obj).string(), o.model.unit_scale,
-                                   o.params.model, &report);
-          fmt::print(stderr, "model {}: {} samples, PPF map {:.2f} MB, {}{}\n", obj,
-                     models[obj].model.size(), models[obj].ppf_map.memoryBytes() / 1e6,
-                     toString(report.outcome),
-                     report.detail.empty() ? "" : " (" + report.detail + ")");
-          method->prepare(models[obj]);
-        }
-        probability[obj] = probabilities->load(scene, im, obj);
-      }
-      const cv::Mat depth = dataset.loadDepth(scene, im);
-      const cv::Mat boundary = o.boundaries == "auto" ? dataset.loadBoundary(scene, im) : cv::Mat();
-
-      for (int obj : objects) {
-        if (probability[obj].size() != depth.size()) {
-          throw InputError(fmt::format("{}: probability map is {}x{} but the depth image is {}x{}",
-                                       dataset.probabilityPath(scene, im, obj).string(),
-                                       probability[obj].cols, probability[obj].rows, depth.cols,
-                                       depth.rows));
-        }
-      }
-      const CameraIntrinsics k = cam->second.intrinsics(depth.cols, depth.rows);
-      auto inputFor = [&](int obj, const OrganizedCloud& cloud) {
-        MethodInput input;
-        input.cloud = &cloud;
-        input.focal_px = static_cast<float>(k.fx);
-        input.camera = &k;
-        input.probability = &probability[obj];
-        input.boundary = boundary.empty() ? nullptr : &boundary;
-        input.model = &models[obj];
-        input.params = &o.params;
-        return input;
-      };
-      if (warm_up) {
-        // The process's first estimate pays once for thread pools and first-touch memory, which a
-        // running node pays at start-up: it runs here, untimed and discarded.
-        const OrganizedCloud cloud = cloudFromDepth(depth, k, cam->second.depth_scale / 1000.0);
-        method->estimate(inputFor(*objects.begin(), cloud));
-        fmt::print(stderr, "warm-up: object {} of scene {} image {} estimated once, untimed\n",
-                   *objects.begin(), scene, im);
-        warm_up = false;
-      }
-
-      // Each repeat converts the cloud and estimates every object again; the poses are those of
-      // the first repeat and the times the medians over the repeats.
-      std::map<int, MethodResult> estimates;
-      std::map<int, std::vector<double>> wall_seconds, cpu_seconds;
-      std::vector<double> image_times;
-      for (int repeat = 0; repeat < o.repeats; ++repeat) {
-        const auto start = std::chrono::steady_clock::now();
-        const OrganizedCloud cloud = cloudFromDepth(depth, k, cam->second.depth_scale / 1000.0);
-        for (int obj : objects) {  // objects run one after the other: all threads count
-          const double cpu_start = processCpuSeconds();
-          MethodResult e = method->estimate(inputFor(obj, cloud));
-          cpu_seconds[obj].push_back(processCpuSeconds() - cpu_start);
-          wall_seconds[obj].push_back(e.seconds);
-          if (repeat == 0) estimates[obj] = std::move(e);
-        }
-        image_times.push_back(
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      }
-      const double image_seconds = quantile(image_times, 0.5);
-      for (auto& [obj, e] : estimates) e.seconds = quantile(wall_seconds[obj], 0.5);
-
-      for (const auto& [obj, e] : estimates) {
-        ++targets;
-        object_runs.push_back({{scene, im, obj},
-                               e.found,
-                               e.seconds,
-                               quantile(cpu_seconds[obj], 0.5),
-                               e.segment_points,
-                               e.hypotheses});
-        std::string line = fmt::format("scene {} image {} object {}: segment {} points, ", scene,
-                                       im, obj, e.segment_points);
-        if (!e.found) {
-          fmt::print(stderr, "{}no pose found ({:.3f} s)\n", line, e.seconds);
-          continue;
-        }
-        ++found;
-        const std::vector<ScoredPose> poses =
-            e.instances.empty() ? std::vector<ScoredPose>{{e.pose, e.score}} : e.instances;
-        const auto it = info.find(obj);
-        const double diameter = it != info.end() ? it->second.diameter_mm : 0;
-        std::vector<Eigen::Vector3f> points_mm;  // once for all poses of the target
-        for (const Eigen::Vector3f& p : models[obj].model.points) points_mm.push_back(p * 1000.0f);
-        std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
-        for (size_t k = 0; k < poses.size(); ++k) {
-          const RigidPose pose = toBop(poses[k].pose);
-          results.push_back({scene, im, obj, poses[k].score, pose.R, pose.t, image_seconds});
-          if (k > 0) line += fmt::format("\n  instance {}: ", k);
-          line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", poses[k].score,
-                              pose.t.x(), pose.t.y(), pose.t.z());
-          if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
-          const NearestInstance near = nearestInstance(points_mm, pose, instances, obj);
-          if (near.index < 0 || diameter <= 0) continue;
-          line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}", near.adds,
-                              100.0 * near.adds / diameter, near.index);
-          if (near.adds < 0.1 * diameter) recalled.insert(near.index);
-        }
-        const auto truths = std::count_if(instances.begin(), instances.end(),
-                                          [&](const BopGtInstance& g) { return g.obj_id == obj; });
-        if (poses.size() > 1 && truths > 0) {
-          line += fmt::format("\n  instance recall {} of {} ground-truth instances",
-                              recalled.size(), truths);
-        }
-        fmt::print(stderr, "{}\n", line);
-      }
-    }
-  }
-  if (targets == 0) {
-    throw InputError(fmt::format(
-        "dataset {}: no (image, object) pair of the selected scenes and objects has a probability "
-        "map from source '{}'",
-        o.dataset, o.prob));
-  }
-  writeBopResults(o.out, results);
-  if (!o.per_object.empty()) writeObjectRuns(o.per_object, object_runs);
-  fmt::print(stderr, "{} of {} objects found; results in {}\n", found, targets, o.out);
-  return 0;
+  return EstimateRun(o).run();
 }
 
 }  // namespace

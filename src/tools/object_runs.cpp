@@ -1,7 +1,6 @@
 #include "object_runs.h"
 
 #include <fmt/format.h>
-#include <time.h>
 
 #include <fstream>
 #include <sstream>
@@ -10,12 +9,6 @@
 #include "stocs/util/error.h"
 
 namespace stocs::tools {
-
-double processCpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs) {
   std::string text = "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses\n";

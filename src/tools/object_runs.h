@@ -21,9 +21,6 @@ struct ObjectRun {
   long hypotheses = 0;
 };
 
-/// CPU time consumed so far by every thread of this process (CLOCK_PROCESS_CPUTIME_ID).
-double processCpuSeconds();
-
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs);
 
 /// Throws InputError naming the file and line of a malformed row.

@@ -8,10 +8,11 @@
 
 namespace stocs {
 
-bool ParamRange::contains(double v) const {
-  if (also && v == *also) return true;
-  const bool above = lo_open ? v > lo : v >= lo;
-  const bool below = hi_open ? v < hi : v <= hi;
+bool ParamRange::contains(double v, bool in_float) const {
+  const auto as = [in_float](double x) { return in_float ? double(static_cast<float>(x)) : x; };
+  if (also && v == as(*also)) return true;
+  const bool above = lo_open ? v > as(lo) : v >= as(lo);
+  const bool below = hi_open ? v < as(hi) : v <= as(hi);
   return above && below;  // false for NaN
 }
 
@@ -67,7 +68,7 @@ std::string paramText(const ParamRef& value) {
 std::optional<std::string> ParamInfo::problem(const ParamRef& value) const {
   const std::string shown = unit.empty() ? paramText(value) : paramText(value) + " " + unit;
   const std::optional<double> number = numeric(value);
-  if (range && number && !range->contains(*number)) {
+  if (range && number && !range->contains(*number, std::holds_alternative<float*>(value))) {
     return fmt::format("{} is outside {}", shown, range->str());
   }
   if (!choices.empty() &&

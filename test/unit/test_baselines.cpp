@@ -47,11 +47,11 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     model_.ppf_map = PpfHashMap::build(model_.model, PpfParams{});
   }
 
-  MethodInput input(const PipelineParams& params, const cv::Mat* probability = &probability_,
+  ObjectInput input(const PipelineParams& params, const cv::Mat* probability = &probability_,
                     const OrganizedCloud* cloud = &cloud_) const {
-    MethodInput in;
+    ObjectInput in;
     in.cloud = cloud;
-    in.focal_px = static_cast<float>(camera_.fx);
+    in.camera = &camera_;
     in.probability = probability;
     in.model = &model_;
     in.params = &params;
@@ -73,7 +73,7 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
     return p;
   }
 
-  static double addsOf(const MethodResult& r, const Eigen::Isometry3f& truth = truth_) {
+  static double addsOf(const PoseEstimate& r, const Eigen::Isometry3f& truth = truth_) {
     return addsError(model_.model.points,
                      {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},
                      {truth.linear().cast<double>(), truth.translation().cast<double>()});
@@ -101,12 +101,12 @@ TEST_P(BaselineTest, IsRegisteredUnderItsName) {
 TEST_P(BaselineTest, FindsTheRenderedPoseWithAndWithoutRefinement) {
   PipelineParams params = withSeed(1);
   params.stocs.icp.enabled = false;
-  const MethodResult raw = method(GetParam()).estimate(input(params));
+  const PoseEstimate raw = method(GetParam()).estimate(input(params));
   ASSERT_TRUE(raw.found);
   EXPECT_LT(addsOf(raw), 0.10 * model_.model.diameter);
   EXPECT_GT(raw.score, 0.0);
   params.stocs.icp.enabled = true;
-  const MethodResult refined = method(GetParam()).estimate(input(params));
+  const PoseEstimate refined = method(GetParam()).estimate(input(params));
   ASSERT_TRUE(refined.found);
   EXPECT_LT(addsOf(refined), 0.10 * model_.model.diameter);
   EXPECT_EQ(refined.score, raw.score);  // the method's own fitness, before refinement
@@ -114,8 +114,8 @@ TEST_P(BaselineTest, FindsTheRenderedPoseWithAndWithoutRefinement) {
 }
 
 TEST_P(BaselineTest, TheSameSeedGivesTheSamePose) {
-  const MethodResult first = method(GetParam()).estimate(input(withSeed(5)));
-  const MethodResult second = method(GetParam()).estimate(input(withSeed(5)));
+  const PoseEstimate first = method(GetParam()).estimate(input(withSeed(5)));
+  const PoseEstimate second = method(GetParam()).estimate(input(withSeed(5)));
   ASSERT_TRUE(first.found && second.found);
   EXPECT_EQ(first.pose.matrix(), second.pose.matrix());
   EXPECT_EQ(first.score, second.score);
@@ -125,14 +125,14 @@ TEST_P(BaselineTest, EmptyTinyOrInvalidScenesGiveNoPose) {
   PoseMethod& m = method(GetParam());
   const PipelineParams params = withSeed(1);
   const cv::Mat nothing(probability_.size(), CV_32FC1, cv::Scalar(0));
-  const MethodResult empty = m.estimate(input(params, &nothing));
+  const PoseEstimate empty = m.estimate(input(params, &nothing));
   EXPECT_FALSE(empty.found);
   EXPECT_EQ(empty.segment_points, 0u);
 
   // Three pixels: fewer points than a base needs.
   cv::Mat three = nothing.clone();
   three(cv::Rect(150, 110, 3, 1)).setTo(1.0f);
-  const MethodResult tiny = m.estimate(input(params, &three));
+  const PoseEstimate tiny = m.estimate(input(params, &three));
   EXPECT_FALSE(tiny.found);
   EXPECT_LT(tiny.segment_points, 4u);
 
@@ -154,7 +154,7 @@ TEST_P(BaselineTest, AFlatFaceOnSegmentNeverCrashes) {
                                          0.5f};
     }
   }
-  const MethodResult r = method(GetParam()).estimate(input(withSeed(1), &probability_, &wall));
+  const PoseEstimate r = method(GetParam()).estimate(input(withSeed(1), &probability_, &wall));
   EXPECT_GT(r.segment_points, 100u);
   if (r.found) {
     EXPECT_TRUE(r.pose.matrix().allFinite());
@@ -181,8 +181,8 @@ class HardSegmentTest : public BaselineTest {};
 TEST_P(HardSegmentTest, SeesTheSameHardSegmentAsTheStocsAblation) {
   const PipelineParams params = withSeed(1, 1);
   for (float threshold : {0.4f, 0.2f}) {
-    const MethodResult ablation = makeMethod("stocs-hard", {threshold})->estimate(input(params));
-    const MethodResult baseline = makeMethod(GetParam(), {threshold})->estimate(input(params));
+    const PoseEstimate ablation = makeMethod("stocs-hard", {threshold})->estimate(input(params));
+    const PoseEstimate baseline = makeMethod(GetParam(), {threshold})->estimate(input(params));
     EXPECT_GT(baseline.segment_points, 0u);
     EXPECT_EQ(baseline.segment_points, ablation.segment_points) << "threshold " << threshold;
   }
@@ -216,7 +216,7 @@ TEST_P(FourPcsInstancesTest, FindsOneOfSeveralInstancesInTheSegment) {
   probability.setTo(0.9f, labels > 0);
   PipelineParams params = withSeed(1, 30);
   params.stocs.icp.enabled = false;  // the search alone
-  const MethodResult r = method(GetParam()).estimate(input(params, &probability, &cloud));
+  const PoseEstimate r = method(GetParam()).estimate(input(params, &probability, &cloud));
   ASSERT_TRUE(r.found);
   double nearest = std::numeric_limits<double>::infinity();
   for (const Eigen::Isometry3f& t : truths) {
@@ -237,7 +237,7 @@ class FourPcsBudgetTest : public BaselineTest {};
 TEST_P(FourPcsBudgetTest, ATimeBudgetStopsTheSearch) {
   PipelineParams params = withSeed(1, 100000);
   params.stocs.time_budget = 0.2;
-  const MethodResult r = method(GetParam()).estimate(input(params));
+  const PoseEstimate r = method(GetParam()).estimate(input(params));
   EXPECT_TRUE(r.found);
   EXPECT_LT(r.seconds, 30.0);  // generous: bounds the stop, does not measure speed
 }
@@ -267,13 +267,13 @@ TEST(PpfBaseline, KeepsOneTrainedDetectorPerModel) {
           cloudFromDepth(test::renderDepth({{shape, truth}}, k, &labels), k, 1.0);
       cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
       probability.setTo(1.0f, labels == 1);
-      MethodInput in;
+      ObjectInput in;
       in.cloud = &cloud;
-      in.focal_px = 300;
+      in.camera = &k;
       in.probability = &probability;
       in.model = &model;
       in.params = &params;
-      const MethodResult r = ppf->estimate(in);
+      const PoseEstimate r = ppf->estimate(in);
       ASSERT_TRUE(r.found) << "round " << round;
       EXPECT_LT(addsError(model.model.points,
                           {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},

@@ -103,7 +103,7 @@ TEST(Cli, BadInputsExitNonZeroWithAMessage) {
                                  " --out x.csv --samples-per-voxel 0.5",
                              out),
             2);
-  EXPECT_NE(out.find("segment samples per voxel 0.5 is neither 0"), std::string::npos) << out;
+  EXPECT_NE(out.find("--samples-per-voxel 0.5 is outside 0 or [1, 100]"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
                                  " --out x.csv --focus-exponent 0",
                              out),

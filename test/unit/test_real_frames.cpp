@@ -39,12 +39,12 @@ void expectNineOfTenSeeds(const std::filesystem::path& root, const Frame& f) {
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     PipelineParams p = params;
     p.stocs.seed = seed;
-    const ObjectEstimate r = estimateObject(cloud, static_cast<float>(k.fx), probability, model, p,
-                                            boundary.empty() ? nullptr : &boundary);
+    const PoseEstimate r = estimateObject(cloud, static_cast<float>(k.fx), probability, model, p,
+                                          boundary.empty() ? nullptr : &boundary);
     double best = 1e9;
-    if (r.estimate.found) {
-      const RigidPose est{r.estimate.pose.linear().cast<double>(),
-                          r.estimate.pose.translation().cast<double>() * 1000};
+    if (r.found) {
+      const RigidPose est{r.pose.linear().cast<double>(),
+                          r.pose.translation().cast<double>() * 1000};
       for (const BopGtInstance& g : truth) {
         if (g.obj_id == f.object) best = std::min(best, addsError(points_mm, est, {g.R, g.t_mm}));
       }

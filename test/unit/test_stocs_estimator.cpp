@@ -39,7 +39,7 @@ class StocsEstimatorTest : public ::testing::Test {
   }
 
   /// The whole pipeline (soft segment, estimate) on the rendered frame.
-  ObjectEstimate estimate(const PipelineParams& params) const {
+  PoseEstimate estimate(const PipelineParams& params) const {
     return estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
   }
 
@@ -64,21 +64,20 @@ TEST_F(StocsEstimatorTest, FindsTheRenderedPose) {
   PipelineParams params;
   for (uint64_t seed : {1u, 2u, 3u}) {
     params.stocs.seed = seed;
-    const ObjectEstimate r = estimate(params);
-    ASSERT_TRUE(r.estimate.found) << "seed " << seed;
+    const PoseEstimate r = estimate(params);
+    ASSERT_TRUE(r.found) << "seed " << seed;
     EXPECT_GT(r.segment_points, 100u);
-    EXPECT_LT(addsOf(r.estimate), 0.05 * model_.model.diameter) << "seed " << seed;
+    EXPECT_LT(addsOf(r), 0.05 * model_.model.diameter) << "seed " << seed;
     // The asymmetric block makes the pose unique: ADD (no symmetry forgiveness) is small too.
     EXPECT_LT(addError(model_.model.points,
-                       {r.estimate.pose.linear().cast<double>(),
-                        r.estimate.pose.translation().cast<double>()},
+                       {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},
                        {truth_.linear().cast<double>(), truth_.translation().cast<double>()}),
               0.05 * model_.model.diameter);
     // The loop runs whole blocks of bases until its consensus stop, at most every base.
-    EXPECT_LE(r.estimate.bases_tried, params.stocs.bases);
-    EXPECT_EQ(r.estimate.bases_tried % StocsParams::kConsensusBlock, 0);
-    EXPECT_GT(r.estimate.hypotheses, 0);
-    EXPECT_GT(r.estimate.lcp.matched, 50);
+    EXPECT_LE(r.bases_tried, params.stocs.bases);
+    EXPECT_EQ(r.bases_tried % StocsParams::kConsensusBlock, 0);
+    EXPECT_GT(r.hypotheses, 0);
+    EXPECT_GT(r.lcp.matched, 50);
   }
 }
 
@@ -86,30 +85,30 @@ TEST_F(StocsEstimatorTest, FitsThatTurnTheModelOverAreNotScored) {
   PipelineParams params;
   params.stocs.seed = 5;
   params.stocs.min_normal_agreement = 0;
-  const ObjectEstimate all = estimate(params);
+  const PoseEstimate all = estimate(params);
   params.stocs.min_normal_agreement = 1;
-  const ObjectEstimate agreeing = estimate(params);
-  EXPECT_EQ(all.estimate.normal_mismatches, 0);
+  const PoseEstimate agreeing = estimate(params);
+  EXPECT_EQ(all.normal_mismatches, 0);
   // The block's flat faces give fits with every normal reversed; they are skipped, and the pose
   // found is as good.
-  EXPECT_GT(agreeing.estimate.normal_mismatches, 0);
-  EXPECT_LT(agreeing.estimate.hypotheses, all.estimate.hypotheses);
-  ASSERT_TRUE(agreeing.estimate.found);
-  EXPECT_LT(addsOf(agreeing.estimate), 0.05 * model_.model.diameter);
+  EXPECT_GT(agreeing.normal_mismatches, 0);
+  EXPECT_LT(agreeing.hypotheses, all.hypotheses);
+  ASSERT_TRUE(agreeing.found);
+  EXPECT_LT(addsOf(agreeing), 0.05 * model_.model.diameter);
 }
 
 TEST_F(StocsEstimatorTest, OnlyTheBestHeadsOfABaseAreFinished) {
   PipelineParams params;
   params.stocs.seed = 5;
   params.stocs.finished_per_base = 100000;
-  const ObjectEstimate every = estimate(params);
+  const PoseEstimate every = estimate(params);
   params.stocs.finished_per_base = 2;
-  const ObjectEstimate best_two = estimate(params);
-  EXPECT_EQ(every.estimate.finished, every.estimate.hypotheses);
-  EXPECT_LE(best_two.estimate.finished, 2L * best_two.estimate.bases_with_sets);
-  EXPECT_LT(best_two.estimate.finished, every.estimate.finished);
-  ASSERT_TRUE(best_two.estimate.found);
-  EXPECT_LT(addsOf(best_two.estimate), 0.05 * model_.model.diameter);
+  const PoseEstimate best_two = estimate(params);
+  EXPECT_EQ(every.finished, every.hypotheses);
+  EXPECT_LE(best_two.finished, 2L * best_two.bases_with_sets);
+  EXPECT_LT(best_two.finished, every.finished);
+  ASSERT_TRUE(best_two.found);
+  EXPECT_LT(addsOf(best_two), 0.05 * model_.model.diameter);
 }
 
 TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
@@ -331,12 +330,12 @@ TEST_F(StocsEstimatorTest, OnlyTheFirstBasesAreFocused) {
 TEST_F(StocsEstimatorTest, TheFramesIntrinsicsMustFitTheCloud) {
   const PipelineParams params;
   const auto focal = static_cast<float>(camera_.fx);
-  const ObjectEstimate recovered = estimateObject(cloud_, focal, probability_, model_, params);
-  const ObjectEstimate given =
+  const PoseEstimate recovered = estimateObject(cloud_, focal, probability_, model_, params);
+  const PoseEstimate given =
       estimateObject(cloud_, focal, probability_, model_, params, nullptr, &camera_);
-  ASSERT_TRUE(given.estimate.found);
-  EXPECT_LT(addsOf(given.estimate), 0.05 * model_.model.diameter);
-  EXPECT_LT(addsOf(recovered.estimate), 0.05 * model_.model.diameter);
+  ASSERT_TRUE(given.found);
+  EXPECT_LT(addsOf(given), 0.05 * model_.model.diameter);
+  EXPECT_LT(addsOf(recovered), 0.05 * model_.model.diameter);
   CameraIntrinsics other = camera_;
   other.width = camera_.width / 2;
   try {
@@ -352,13 +351,13 @@ TEST_F(StocsEstimatorTest, TheFramesIntrinsicsMustFitTheCloud) {
 TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   PipelineParams params;
   const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
-  const ObjectEstimate r =
+  const PoseEstimate r =
       estimateObject(cloud_, static_cast<float>(camera_.fx), nothing, model_, params);
   EXPECT_EQ(r.segment_points, 0u);
-  EXPECT_FALSE(r.estimate.found);
-  const ObjectEstimate nan_cloud = estimateObject(
+  EXPECT_FALSE(r.found);
+  const PoseEstimate nan_cloud = estimateObject(
       OrganizedCloud(320, 240), static_cast<float>(camera_.fx), probability_, model_, params);
-  EXPECT_FALSE(nan_cloud.estimate.found);
+  EXPECT_FALSE(nan_cloud.found);
 }
 
 TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
@@ -376,13 +375,12 @@ TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
   model.ppf_map = PpfHashMap::build(model.model, PpfParams{});
   PipelineParams params;
   params.stocs.instances = 3;  // one more than there are: the third, if any, is not a duplicate
-  const ObjectEstimate r =
-      estimateObject(cloudFromDepth(depth, camera, 1.0), static_cast<float>(camera.fx), probability,
-                     model, params);
-  ASSERT_GE(r.estimate.instances.size(), 2u);
-  EXPECT_TRUE(r.estimate.instances[0].pose.isApprox(r.estimate.pose));
+  const PoseEstimate r = estimateObject(cloudFromDepth(depth, camera, 1.0),
+                                        static_cast<float>(camera.fx), probability, model, params);
+  ASSERT_GE(r.instances.size(), 2u);
+  EXPECT_TRUE(r.instances[0].pose.isApprox(r.pose));
   std::vector<int> found(truths.size(), 0);
-  for (const InstancePose& p : r.estimate.instances) {
+  for (const InstancePose& p : r.instances) {
     for (size_t t = 0; t < truths.size(); ++t) {
       const double adds = addsError(
           model.model.points, {p.pose.linear().cast<double>(), p.pose.translation().cast<double>()},
@@ -391,8 +389,8 @@ TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
     }
   }
   EXPECT_EQ(found, (std::vector<int>{1, 1}));  // both found, neither twice
-  for (size_t k = 1; k < r.estimate.instances.size(); ++k) {
-    EXPECT_LE(r.estimate.instances[k].lcp.score, r.estimate.instances[k - 1].lcp.score);
+  for (size_t k = 1; k < r.instances.size(); ++k) {
+    EXPECT_LE(r.instances[k].score, r.instances[k - 1].score);
   }
 }
 

@@ -66,6 +66,9 @@ struct BaseSamplingScratch {
 class BaseSampler {
  public:
   BaseSampler(const SoftSegment& segment, const PpfHashMap& map, const BaseSamplerParams& params);
+  /// The sampler keeps references: temporaries would dangle.
+  BaseSampler(SoftSegment&&, const PpfHashMap&, const BaseSamplerParams&) = delete;
+  BaseSampler(const SoftSegment&, PpfHashMap&&, const BaseSamplerParams&) = delete;
 
   /// A base, or nothing when `max_attempts` draws of b1 all led to a point with zero weight.
   std::optional<Base> sample(Rng& rng, BaseSamplingScratch& scratch,

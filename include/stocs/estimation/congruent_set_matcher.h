@@ -49,6 +49,8 @@ class CongruentSetMatcher {
   };
 
   CongruentSetMatcher(const PreparedModel& model, const CongruentSetParams& params);
+  /// The matcher keeps a reference to the model: a temporary would dangle.
+  CongruentSetMatcher(PreparedModel&&, const CongruentSetParams&) = delete;
 
   /// Congruent sets for the base (points and normals in base order), at most max_sets, no
   /// duplicates, written to `out`. Returns how many were written.

@@ -34,6 +34,8 @@ class FreeSpaceCheck {
   /// Keeps references: `cloud` and `camera` (its intrinsics) must outlive the check.
   FreeSpaceCheck(const OrganizedCloud& cloud, const CameraIntrinsics& camera,
                  const FreeSpaceParams& params);
+  FreeSpaceCheck(OrganizedCloud&&, const CameraIntrinsics&, const FreeSpaceParams&) = delete;
+  FreeSpaceCheck(const OrganizedCloud&, CameraIntrinsics&&, const FreeSpaceParams&) = delete;
 
   /// Of the model samples that face the camera at `pose` (model to camera) and project onto a
   /// pixel with a measurement, the fraction in free space; 0 when none qualifies.

@@ -48,6 +48,8 @@ class IcpRefiner {
  public:
   /// Throws InputError when `params` are out of range.
   IcpRefiner(const SoftSegment& segment, const IcpParams& params);
+  /// The refiner keeps a reference to the segment: a temporary would dangle.
+  IcpRefiner(SoftSegment&&, const IcpParams&) = delete;
 
   /// Refined pose against the segment points of `region` (-1: all), or `pose` itself when fewer
   /// than 6 correspondences are found. `near`, a scorer of the same segment, speeds up the search

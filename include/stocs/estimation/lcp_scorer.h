@@ -51,6 +51,8 @@ struct PartialScore {
 class LcpScorer {
  public:
   LcpScorer(const SoftSegment& segment, const LcpParams& params);
+  /// The scorer keeps a reference to the segment: a temporary would dangle.
+  LcpScorer(SoftSegment&&, const LcpParams&) = delete;
 
   /// The objective for `pose` (model to camera) against the points of `region` (-1: all points).
   /// Returns a negative value, having stopped early, when the remaining model points cannot lift

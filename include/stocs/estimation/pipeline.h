@@ -27,20 +27,14 @@ struct PipelineParams {
   void validate() const;
 };
 
-struct ObjectEstimate {
-  size_t segment_points = 0;
-  PoseEstimate estimate;
-  double seconds = 0;  ///< segment building plus estimation
-};
-
 /// Segments the cloud with `probability` (CV_32FC1, see toProbabilityImage), splits it into
 /// instance regions when a boundary map is given (see labelRegions), and runs StoCS. `camera`, the
 /// cloud's intrinsics for the free-space check, is recovered from the cloud when null (a caller
-/// estimating several objects of a frame passes it once known). Throws InputError on size or type
-/// mismatches.
-ObjectEstimate estimateObject(const OrganizedCloud& cloud, float focal_px,
-                              const cv::Mat& probability, const PreparedModel& model,
-                              const PipelineParams& params, const cv::Mat* boundary_map = nullptr,
-                              const CameraIntrinsics* camera = nullptr);
+/// estimating several objects of a frame passes it once known). The estimate's seconds and stages
+/// include the soft segment. Throws InputError on size or type mismatches.
+PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
+                            const PreparedModel& model, const PipelineParams& params,
+                            const cv::Mat* boundary_map = nullptr,
+                            const CameraIntrinsics* camera = nullptr);
 
 }  // namespace stocs

@@ -95,6 +95,7 @@ struct StocsParams {
 
 /// Seconds spent in each stage, summed over threads (the paper's Table 1c breakdown).
 struct StageSeconds {
+  double segment = 0;  ///< the soft segment (estimateObject)
   double sampling = 0;
   double matching = 0;
   double verification = 0;  ///< rigid fits and scoring
@@ -104,20 +105,27 @@ struct StageSeconds {
 /// One distinct pose of the object.
 struct InstancePose {
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
-  LcpDetail lcp;                                           ///< objective of the pose
+  /// The method's score of the pose, higher is better: StoCS's is the alignment objective
+  /// (lcp.score), a baseline's its own fitness.
+  float score = 0;
+  LcpDetail lcp;         ///< the alignment objective in detail (StoCS only)
   bool refined = false;  ///< ICP moved the pose and did not lower the objective
   int region = -1;       ///< instance region the pose was found in (-1: no regions)
 };
 
+/// What the estimation of one object gives: the pose (and further instances) with their
+/// objective, and what it took. Every method returns it (PoseMethod), StoCS fills every field.
 struct PoseEstimate {
   bool found = false;
   Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
-  LcpDetail lcp;                                           ///< objective of the returned pose
+  float score = 0;       ///< of the returned pose, as InstancePose::score
+  LcpDetail lcp;         ///< objective of the returned pose (StoCS only)
   bool refined = false;  ///< ICP moved the pose and did not lower the objective
   int region = -1;       ///< instance region the pose was found in (-1: no regions)
   /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
   /// above.
   std::vector<InstancePose> instances;
+  size_t segment_points = 0;   ///< points of the segment the method registered against
   int bases_tried = 0;         ///< bases started within the budget and before consensus
   int bases_sampled = 0;       ///< of those, bases actually drawn
   int base_draws = 0;          ///< draws in all, with those of bases drawn again (base_draw_budget)
@@ -129,12 +137,17 @@ struct PoseEstimate {
   long finished = 0;   ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
   long icp_steps = 0;  ///< ICP steps taken by all refined candidates
   StageSeconds stages;
-  double seconds = 0;  ///< wall time of estimate()
+  /// Wall time: StocsEstimator::estimate alone, or with the soft segment (estimateObject) or the
+  /// method's own steps (PoseMethod).
+  double seconds = 0;
 };
 
 class StocsEstimator {
  public:
   StocsEstimator(const PreparedModel& model, const StocsParams& params);
+  /// The estimator keeps a reference to the model (stocs::Estimator shares models instead): a
+  /// temporary would dangle.
+  StocsEstimator(PreparedModel&&, const StocsParams&) = delete;
 
   /// With `free_space` (the frame's organized cloud), the refined candidates compete by their
   /// objective times (1 - FreeSpaceCheck::violation): of poses that explain the segment alike, the

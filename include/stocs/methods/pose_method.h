@@ -1,53 +1,18 @@
 #pragma once
-// A pose estimation method run on one object in one frame, so that StoCS, its ablations and the
-// baselines are compared on exactly the same inputs (`stocs estimate --method`, `stocs bench`).
+// A pose estimation method run on one object in one frame (ObjectInput to PoseEstimate), so that
+// StoCS, its ablations and the baselines are compared on exactly the same inputs
+// (`stocs estimate --method`, `stocs bench`).
 
 #include <Eigen/Geometry>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "stocs/estimation/frame.h"
 #include "stocs/estimation/pipeline.h"
-#include "stocs/geometry/organized_cloud.h"
 #include "stocs/model/model_cache.h"
 
-namespace cv {
-class Mat;
-}
-
 namespace stocs {
-
-/// Everything a method may use for one object in one frame. Pointers are never null except
-/// `boundary`.
-struct MethodInput {
-  const OrganizedCloud* cloud = nullptr;
-  float focal_px = 0;
-  /// The cloud's intrinsics where known (null: methods that need them recover them from the cloud).
-  const CameraIntrinsics* camera = nullptr;
-  const cv::Mat* probability = nullptr;  ///< CV_32FC1 in [0, 1]
-  const cv::Mat* boundary = nullptr;     ///< optional CV_8UC1 instance boundary map
-  const PreparedModel* model = nullptr;
-  /// StoCS parameters; other methods honour the shared ones (seed, threads, time_budget, segment
-  /// voxel size and normals).
-  const PipelineParams* params = nullptr;
-};
-
-struct ScoredPose {
-  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera, metres
-  double score = 0;
-};
-
-struct MethodResult {
-  bool found = false;
-  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera, metres
-  double score = 0;  ///< the method's own confidence (higher is better)
-  /// Distinct poses, best first, for methods that find several instances (the first is `pose`);
-  /// empty for the others.
-  std::vector<ScoredPose> instances;
-  size_t segment_points = 0;  ///< points the method registered against
-  long hypotheses = 0;        ///< hypotheses verified, where the method reports it
-  double seconds = 0;         ///< wall time of estimate()
-};
 
 struct MethodOptions {
   /// Probability threshold that turns the soft segmentation into the hard segment given to the
@@ -64,7 +29,7 @@ class PoseMethod {
   /// the clock starts. Optional: estimate() builds what is missing itself.
   virtual void prepare(const PreparedModel& /*model*/) {}
   /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
-  virtual MethodResult estimate(const MethodInput& input) = 0;
+  virtual PoseEstimate estimate(const ObjectInput& input) = 0;
 };
 
 /// Names `makeMethod` accepts.

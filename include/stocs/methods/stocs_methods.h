@@ -8,7 +8,7 @@ namespace stocs {
 class StocsMethod : public PoseMethod {
  public:
   std::string name() const override { return "stocs"; }
-  MethodResult estimate(const MethodInput& input) override;
+  PoseEstimate estimate(const ObjectInput& input) override;
 };
 
 /// Ablation: StoCS on the hard segment (probability above a threshold, uniform weights).
@@ -16,7 +16,7 @@ class HardSegmentStocsMethod : public PoseMethod {
  public:
   explicit HardSegmentStocsMethod(float threshold) : threshold_(threshold) {}
   std::string name() const override { return "stocs-hard"; }
-  MethodResult estimate(const MethodInput& input) override;
+  PoseEstimate estimate(const ObjectInput& input) override;
 
  private:
   float threshold_;

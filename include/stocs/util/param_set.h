@@ -32,8 +32,10 @@ struct ParamRange {
     return r;
   }
 
-  bool contains(double v) const;  ///< false for NaN
-  std::string str() const;        ///< "[1, 1000]", "(0, 0.1]", "0 or [1, 100]"
+  /// False for NaN. `in_float`: compare as a float field holds values, so that a float field set
+  /// to a bound's decimal (0.1) is at the bound, not a rounding step past it.
+  bool contains(double v, bool in_float = false) const;
+  std::string str() const;  ///< "[1, 1000]", "(0, 0.1]", "0 or [1, 100]"
 
  private:
   static ParamRange make(double lo, double hi, bool lo_open, bool hi_open) {

@@ -30,10 +30,10 @@ EstimationSetup twoObjects() {
 
 ObjectOutcome outcome(size_t object, bool found, float x) {
   ObjectOutcome o{object, {}};
-  o.estimate.estimate.found = found;
-  o.estimate.estimate.pose.translation() = Eigen::Vector3f(x, 0, 1);
-  o.estimate.estimate.lcp.score = 0.25f;
-  o.estimate.estimate.hypotheses = 42;
+  o.estimate.found = found;
+  o.estimate.pose.translation() = Eigen::Vector3f(x, 0, 1);
+  o.estimate.score = 0.25f;
+  o.estimate.hypotheses = 42;
   o.estimate.seconds = 0.5;
   return o;
 }
@@ -81,7 +81,7 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"can", 0}, {"can", 1}}));
 
   FrameResult only_can = both;
-  only_can.objects[0].estimate.estimate.found = false;
+  only_can.objects[0].estimate.found = false;
   const visualization_msgs::MarkerArray second = toMarkers(only_can, setup, shown);
   ASSERT_EQ(second.markers.size(), 4u);
   int deleted = 0;
@@ -110,9 +110,9 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
   }
   FrameResult result;
   result.objects = {outcome(0, true, -0.12f), outcome(1, true, 0.12f)};
-  result.objects[0].estimate.estimate.pose.translation().y() = -0.2f;
-  result.objects[1].estimate.estimate.pose.translation().y() = 0.15f;
-  result.objects[1].estimate.estimate.pose.linear() =
+  result.objects[0].estimate.pose.translation().y() = -0.2f;
+  result.objects[1].estimate.pose.translation().y() = 0.15f;
+  result.objects[1].estimate.pose.linear() =
       Eigen::AngleAxisf(0.5f, Eigen::Vector3f(1, 0.2f, 0).normalized()).matrix();
   std::set<MarkerKey> shown;
   const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
@@ -120,7 +120,7 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
   for (size_t object = 0; object < 2; ++object) {
     const visualization_msgs::Marker& label = markers.markers[2 * object + 1];
     ASSERT_EQ(label.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
-    const Eigen::Isometry3f& pose = result.objects[object].estimate.estimate.pose;
+    const Eigen::Isometry3f& pose = result.objects[object].estimate.pose;
     // The object's extent in normalized image coordinates (x / z, y / z; y down).
     float left = 1e9f, right = -1e9f, top = 1e9f;
     for (const Eigen::Vector3f& p : setup.models[object].model.points) {
@@ -173,8 +173,8 @@ ObjectOutcome withInstances(size_t object, int count) {
   for (int k = 0; k < count; ++k) {
     stocs::InstancePose p;
     p.pose.translation() = Eigen::Vector3f(0.1f * (k + 1), 0, 1);
-    p.lcp.score = 0.5f - 0.1f * k;
-    o.estimate.estimate.instances.push_back(p);
+    p.score = 0.5f - 0.1f * k;
+    o.estimate.instances.push_back(p);
   }
   return o;
 }
@@ -205,7 +205,7 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
   EXPECT_EQ(markers.markers[5].text, "box_2 0.300");
 
   // Fewer instances in the next frame: the markers of the lost ones are deleted.
-  result.objects[0].estimate.estimate.instances.resize(1);
+  result.objects[0].estimate.instances.resize(1);
   const visualization_msgs::MarkerArray next = toMarkers(result, setup, shown);
   std::set<MarkerKey> deleted;
   for (const auto& m : next.markers) {

@@ -1,0 +1,77 @@
+#pragma once
+// One RGB-D frame as StoCS reads it, and the loop that estimates the poses of several objects in
+// it: the same loop serves the `stocs` tool (with any PoseMethod), the ROS node and
+// stocs::Estimator.
+
+#include <functional>
+#include <map>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "stocs/estimation/pipeline.h"
+#include "stocs/geometry/camera.h"
+#include "stocs/geometry/organized_cloud.h"
+#include "stocs/model/model_cache.h"
+
+namespace stocs {
+
+/// A frame: the organized cloud of a depth camera and, per object, the probability map of a
+/// segmentation network.
+struct Frame {
+  OrganizedCloud cloud;  ///< one point per pixel, camera optical frame, metres; NaN: no depth
+  /// The cloud's intrinsics (the free-space check projects with them); recovered from the cloud
+  /// when missing.
+  std::optional<CameraIntrinsics> camera;
+  /// Per object name: CV_32FC1 class probabilities in [0, 1], the cloud's size.
+  std::map<std::string, cv::Mat> probabilities;
+  cv::Mat boundary;  ///< optional instance boundary map: CV_8UC1, >= 128 interior
+
+  /// A frame of a depth image (CV_16UC1 or CV_32FC1; `metres_per_unit`: 0.001 for mm) and the
+  /// camera that took it, without probability maps yet.
+  static Frame fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
+                         double metres_per_unit);
+};
+
+/// Everything the estimation of one object in a frame reads (PoseMethod::estimate). Pointers are
+/// never null except `boundary`.
+struct ObjectInput {
+  const OrganizedCloud* cloud = nullptr;
+  const CameraIntrinsics* camera = nullptr;  ///< the cloud's intrinsics
+  const cv::Mat* probability = nullptr;      ///< CV_32FC1 in [0, 1]
+  const cv::Mat* boundary = nullptr;         ///< optional CV_8UC1 instance boundary map
+  const PreparedModel* model = nullptr;
+  /// StoCS parameters; other methods honour the shared ones (seed, threads, time_budget, segment
+  /// voxel size and normals).
+  const PipelineParams* params = nullptr;
+};
+
+/// An object to estimate in a frame: its name (the key of Frame::probabilities) and model.
+struct FrameObject {
+  std::string name;
+  const PreparedModel* model = nullptr;
+};
+
+/// One object's outcome in a frame.
+struct ObjectResult {
+  std::string name;
+  PoseEstimate estimate;
+  double cpu_seconds = 0;  ///< CPU time of every thread of the process while it ran
+};
+
+/// Estimates one object; StoCS (estimateObject) unless a caller passes another method.
+using ObjectEstimator = std::function<PoseEstimate(const ObjectInput&)>;
+
+/// StoCS on one object (estimateObject).
+PoseEstimate estimateWithStocs(const ObjectInput& input);
+
+/// Every object of `objects`, one after the other (each uses every thread), in that order. The
+/// camera is recovered from the cloud once when the frame has none. Throws InputError naming the
+/// object ("object 'cat': ...") when the frame has no probability map for it or the map does not
+/// fit the cloud, and any other InputError of the estimation prefixed the same way.
+std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
+                                        const PipelineParams& params,
+                                        const ObjectEstimator& estimate = estimateWithStocs);
+
+}  // namespace stocs

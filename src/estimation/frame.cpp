@@ -1,0 +1,67 @@
+#include "stocs/estimation/frame.h"
+
+#include <fmt/format.h>
+
+#include "stocs/util/cpu_time.h"
+#include "stocs/util/error.h"
+
+namespace stocs {
+namespace {
+
+/// The probability map of `name` in `frame`, checked against the cloud's size.
+const cv::Mat& probabilityOf(const Frame& frame, const std::string& name) {
+  const auto it = frame.probabilities.find(name);
+  if (it == frame.probabilities.end() || it->second.empty()) {
+    throw InputError("the frame has no probability image");
+  }
+  if (it->second.cols != frame.cloud.width || it->second.rows != frame.cloud.height) {
+    throw InputError(fmt::format("probability image is {}x{} but the cloud is {}x{}",
+                                 it->second.cols, it->second.rows, frame.cloud.width,
+                                 frame.cloud.height));
+  }
+  return it->second;
+}
+
+}  // namespace
+
+Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
+                       double metres_per_unit) {
+  Frame frame;
+  frame.cloud = cloudFromDepth(depth, camera, metres_per_unit);
+  frame.camera = camera;
+  return frame;
+}
+
+PoseEstimate estimateWithStocs(const ObjectInput& in) {
+  return estimateObject(*in.cloud, static_cast<float>(in.camera->fx), *in.probability, *in.model,
+                        *in.params, in.boundary, in.camera);
+}
+
+std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
+                                        const PipelineParams& params,
+                                        const ObjectEstimator& estimate) {
+  const CameraIntrinsics camera = frame.camera ? *frame.camera : intrinsicsFromCloud(frame.cloud);
+  std::vector<ObjectResult> results;
+  for (const FrameObject& object : objects) {
+    try {
+      ObjectInput input;
+      input.cloud = &frame.cloud;
+      input.camera = &camera;
+      input.probability = &probabilityOf(frame, object.name);
+      input.boundary = frame.boundary.empty() ? nullptr : &frame.boundary;
+      input.model = object.model;
+      input.params = &params;
+      ObjectResult result;
+      result.name = object.name;
+      const double cpu_start = processCpuSeconds();
+      result.estimate = estimate(input);
+      result.cpu_seconds = processCpuSeconds() - cpu_start;
+      results.push_back(std::move(result));
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("object '{}': {}", object.name, e.what()));
+    }
+  }
+  return results;
+}
+
+}  // namespace stocs

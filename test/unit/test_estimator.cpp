@@ -1,0 +1,116 @@
+// The C++ interface (stocs/stocs.h): an Estimator owning or sharing its models finds a known pose
+// in a Frame, through the same frame loop as the CLI and the node, and names what is wrong with a
+// request.
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/sim/shape_meshes.h"
+#include "stocs/stocs.h"
+#include "stocs/util/error.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+class EstimatorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const CameraIntrinsics camera = test::testCamera();
+    truth_ = test::viewingPose(0.6f);
+    cv::Mat labels;
+    const cv::Mat depth = test::renderDepth({{asymmetricMesh(), truth_}}, camera, &labels);
+    frame_ = Frame::fromDepth(depth, camera, 1.0);
+    cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+    probability.setTo(0.9f, labels == 1);
+    frame_.probabilities["block"] = probability;
+    model_file_ = (test::scratchDir("estimator") / "block.ply").string();
+    writePly(model_file_, asymmetricMesh(), 1000.0f);  // in mm, as BOP models
+  }
+
+  double adds(const PoseEstimate& e, const PreparedModel& model) const {
+    return addsError(model.model.points,
+                     {e.pose.linear().cast<double>(), e.pose.translation().cast<double>()},
+                     {truth_.linear().cast<double>(), truth_.translation().cast<double>()});
+  }
+
+  Eigen::Isometry3f truth_;
+  Frame frame_;
+  std::string model_file_;
+};
+
+TEST_F(EstimatorTest, FindsTheObjectOfAFrameWithAModelFromAFile) {
+  Estimator estimator(PipelineParams{}, ModelCache(test::scratchDir("estimator_cache")));
+  estimator.addObject("block", model_file_);
+  const std::vector<ObjectResult> results = estimator.estimate(frame_);
+  ASSERT_EQ(results.size(), 1u);
+  EXPECT_EQ(results[0].name, "block");
+  const PoseEstimate& e = results[0].estimate;
+  ASSERT_TRUE(e.found);
+  EXPECT_LT(adds(e, *estimator.model("block")), 0.1 * estimator.model("block")->model.diameter);
+  EXPECT_GT(e.segment_points, 0u);
+  EXPECT_GE(e.seconds, e.stages.segment);
+  EXPECT_EQ(e.instances.front().score, e.score);
+  // The one-object call gives the same estimate.
+  EXPECT_TRUE(estimator.estimate(frame_, "block").pose.isApprox(e.pose));
+}
+
+TEST_F(EstimatorTest, EstimatorsShareAPreparedModelAndSkipObjectsWithoutAMap) {
+  Estimator first(PipelineParams{}, ModelCache(test::scratchDir("estimator_cache")));
+  first.addObject("block", model_file_);
+  Estimator second;
+  second.addObject("block", first.model("block"));
+  second.addObject("other", first.model("block"));
+  EXPECT_EQ(second.model("block"), first.model("block"));  // shared, not copied
+  const std::vector<ObjectResult> results = second.estimate(frame_);
+  ASSERT_EQ(results.size(), 1u);  // "other" has no map in the frame
+  EXPECT_TRUE(results[0].estimate.found);
+}
+
+TEST_F(EstimatorTest, BadRequestsAreNamed) {
+  Estimator estimator;
+  estimator.addObject("block", std::make_shared<const PreparedModel>(PreparedModel{}));
+  EXPECT_THROW(estimator.addObject("block", model_file_), InputError);
+  try {
+    estimator.estimate(frame_, "ghost");
+    ADD_FAILURE() << "an unknown object was estimated";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "unknown object 'ghost'");
+  }
+  Frame small = frame_;
+  small.probabilities["block"] = cv::Mat(10, 10, CV_32FC1, cv::Scalar(0.5f));
+  try {
+    estimator.estimate(small, "block");
+    ADD_FAILURE() << "a map of another size was estimated";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "object 'block': probability image is 10x10 but the cloud is 320x240");
+  }
+  PipelineParams bad;
+  bad.stocs.bases = 0;
+  EXPECT_THROW(Estimator{bad}, InputError);
+}
+
+TEST_F(EstimatorTest, TheFrameLoopRunsAnyMethodAndRequiresEveryRequestedMap) {
+  const PreparedModel model;
+  int calls = 0;
+  const ObjectEstimator counting = [&](const ObjectInput& in) {
+    ++calls;
+    EXPECT_EQ(in.cloud, &frame_.cloud);
+    EXPECT_EQ(in.model, &model);
+    EXPECT_EQ(in.camera->fx, frame_.camera->fx);
+    return PoseEstimate{};
+  };
+  EXPECT_EQ(estimateFrame(frame_, {{"block", &model}}, PipelineParams{}, counting).size(), 1u);
+  EXPECT_EQ(calls, 1);
+  try {
+    estimateFrame(frame_, {{"block", &model}, {"mug", &model}}, PipelineParams{}, counting);
+    ADD_FAILURE() << "an object without a map was estimated";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "object 'mug': the frame has no probability image");
+  }
+}
+
+}  // namespace
+}  // namespace stocs
