@@ -62,6 +62,8 @@ endif()
 
 # A plain CMake build installs the core for find_package(stocs) (examples/estimate_pose).
 if(NOT STOCS_CATKIN)
+  # A plain CMake build, never a catkin one: not linted.
+  #catkin_lint: skip
   include(GNUInstallDirs)
   include(CMakePackageConfigHelpers)
   install(TARGETS ${modules} stocs_core EXPORT stocsTargets
