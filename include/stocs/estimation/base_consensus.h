@@ -8,8 +8,7 @@
 //
 // Agreement alone also ends the search on a wrong pose that many bases find first (a box slid
 // along its face, a block turned over), so the caller may add a test of the best base's pose: the
-// estimator's is the free-space check of that (unrefined) pose. Accuracy and time with and
-// without: BENCHMARKS.md, "Consensus stop".
+// estimator's is the free-space check of that (unrefined) pose.
 
 #include <Eigen/Geometry>
 #include <functional>

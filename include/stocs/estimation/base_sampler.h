@@ -36,10 +36,9 @@ struct BaseSamplerParams {
   float wide_angle_deg = 15.0f;  ///< epsilon_1: min angle at b1 between b1b2 and b1b3 (and to 180)
   float coplanarity = 0.005f;    ///< epsilon_2: max distance of b4 from plane(b1, b2, b3), metres
   int max_attempts = 20;         ///< fresh draws of b1 before a base counts as failed
-  /// Power of pi_k in focused draws. A network's map is graded: of the cat's pixels above epsilon
-  /// on its lmo-cat map 25% are the cat's, of those above 0.8 89%. Drawn by pi_k^6, a base lies on
-  /// the object far more often, while every point still counts in the objective. Accuracy:
-  /// BENCHMARKS.md, "Focused first bases".
+  /// Power of pi_k in focused draws. A network's map is graded: the more confident its pixels, the
+  /// more of them lie on the object. Drawn by pi_k^6, a base lies on the object far more often,
+  /// while every point still counts in the objective with its pi_k.
   int focus_exponent = 6;
   static constexpr int kMaxFocusExponent = 16;
 

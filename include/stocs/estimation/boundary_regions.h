@@ -6,9 +6,9 @@
 //
 // Labelled by runs of interior pixels rather than with cv::connectedComponents: a segment needs the
 // region of a few thousand pixels, not a 640x480 label image, and OpenCV's labelling runs on its
-// own thread pool, which on two cores fought the estimator's OpenMP threads (0.8 to 0.9 ms per
-// object on the dove bin, 0.45 ms alone on one core). A boundary map is mostly long runs, so the
-// scan steps 8 pixels at a time where nothing changes, and the union-find joins runs, not pixels.
+// own thread pool, which competes with the estimator's OpenMP threads for the cores. A boundary
+// map is mostly long runs, so the scan steps 8 pixels at a time where nothing changes, and the
+// union-find joins runs, not pixels.
 
 #include <vector>
 

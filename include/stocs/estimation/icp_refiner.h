@@ -15,9 +15,8 @@ struct IcpParams {
   bool enabled = true;
   /// The poses of this many best bases are refined and the best objective after refinement wins.
   int candidates = 10;
-  /// Steps at most. Most refinements do not converge but slide along near-symmetries by 1e-3 to
-  /// 7e-2 rad a step: 14 found as many objects in all as 20 on the evaluation sets at 2, 4 and 100
-  /// bases (BENCHMARKS.md, "Twentieth session").
+  /// Steps at most. Most refinements do not converge but slide along near-symmetries a little
+  /// every step, so further steps rarely change which pose wins.
   int iterations = 14;
   /// Screening of the candidates: each first takes this many steps, and only the `finalists` best
   /// of them by objective take the rest. 0 (or iterations or more) refines every candidate fully,

@@ -24,7 +24,7 @@ struct LcpParams {
   /// of them is too far below the score it must reach is dropped: by 1 - `coarse_ratio` of it at
   /// the first check, by less at later ones as the sample grows (see LcpScorer::advance). Model
   /// samples are stored in random order, so the points seen are an unbiased subsample. 0 disables
-  /// it (then only the exact bound stops early). Accuracy before and after: BENCHMARKS.md.
+  /// it (then only the exact bound stops early).
   float coarse_fraction = 0.125f;
   float coarse_ratio = 0.5f;
 

@@ -2,8 +2,7 @@
 // The neighbourhood grids of a segment at one radius: one over all its points and one per instance
 // region. Without regions the grid of all points is built at once; with regions every base, and so
 // every hypothesis and refinement, stays inside one region, and a frame's bases touch few of the
-// regions: each grid is built on its first query (the dove bin's 2 to 5 bases touch a few of
-// its 24 regions, and building every grid up front took a sixth of its time per object).
+// regions: each grid is built on its first query rather than every one up front.
 
 #include <Eigen/Core>
 #include <cstdint>

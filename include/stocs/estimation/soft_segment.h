@@ -7,9 +7,7 @@
 // This bounds the work of every later stage by the object's surface area rather than by its
 // distance to the camera. Where a voxel spans many pixels (near, or a long focal length), the
 // pixel scan takes every s-th row and column: a 5 mm voxel covers 9 x 9 pixels of YCB-Video at
-// 0.6 m, and a centroid of 81 pixels instead of 4 to 9 gave no better poses for a third more time
-// per object (BENCHMARKS.md, "ICP about the model's centre, and a pixel stride in the soft
-// segment").
+// 0.6 m, and a few of them place its centroid as well as all 81, in less time.
 
 #include <Eigen/Core>
 #include <vector>
@@ -26,9 +24,8 @@ namespace stocs {
 
 struct SoftSegmentParams {
   /// epsilon of eq. (2); pixels at or below it are left out. The paper only asks for a small
-  /// value. 0.2 rather than 0.1: the band (0.1, 0.2] of the cat's network map holds none of the
-  /// cat's pixels and about three times its area of clutter, whose points cost time and drew bases
-  /// off the object (BENCHMARKS.md, "Epsilon 0.2").
+  /// value. 0.2 rather than 0.1: a network map's faintest band lies mostly on clutter, whose
+  /// points cost time and draw bases off the object.
   float min_probability = 0.2f;
   float voxel_size = 0.005f;  ///< metres; 0 keeps every pixel as a point
   /// Pixel samples across a voxel at the segment's far depth (the 90th percentile of its pixels'):

@@ -40,14 +40,13 @@ struct StocsParams {
   /// A hypothesis is scored only when at least this many of the base's four points have the
   /// normal of their model point within delta_n under it (0 scores every one). Flat and
   /// symmetric faces give many fits that turn the model inside out (every normal reversed); they
-  /// cannot score, and on the dove they are 47% of all fits. One agreeing point suffices to keep
-  /// every fit that is not turned over.
+  /// cannot score, so scoring them is wasted. One agreeing point suffices to keep every fit that
+  /// is not turned over.
   int min_normal_agreement = 1;
   /// Of a base's hypotheses, only this many, those with the best objective over the first
   /// LcpParams::coarse_fraction of the model (their head, an unbiased subsample), are scored in
   /// full; the base's best is the best of them. Planar and symmetric bases give dozens of
   /// near-equal sliding fits, which otherwise survive the coarse checks for most of the model.
-  /// Accuracy before and after: BENCHMARKS.md.
   int finished_per_base = 4;
   LcpParams lcp;
   IcpParams icp;
@@ -56,26 +55,22 @@ struct StocsParams {
   /// Base draws per object when fewer bases are asked for: a base that gives nothing to verify
   /// (no congruent set on the model, or no set whose fit passes) is drawn again, up to
   /// max(1, base_draw_budget / bases) draws in all. On a cluttered segment most draws straddle
-  /// other surfaces (60-70% of the cat's on its network map), so a few bases would otherwise mean
-  /// a few verified ones; with `bases` at or above the budget every base is drawn once, as in
-  /// the paper. Accuracy and time at 5-20 bases: BENCHMARKS.md, "Drawing failed bases again".
+  /// other surfaces, so a few bases would otherwise mean fewer verified ones; with `bases` at or
+  /// above the budget every base is drawn once, as in the paper.
   int base_draw_budget = 100;
   /// The first this many bases of an object (one consensus block) draw their points by
   /// pi_k^focus_exponent (BaseWeighting::kFocused), the others by pi_k as the paper does. On a
-  /// network's graded map focused bases lie on the object more often, so few bases suffice (the
-  /// cat of lmo-cat on its network map: found with 2 bases in 32 of 40 seeds instead of 16). The
-  /// later bases keep the paper's spread over the segment, which matters on flat simulated maps
-  /// (generated scenes at 100 bases, seeds 0-4: 93.7% found with every base focused, 94.5% with
-  /// the first 10, 95.1% with none). BENCHMARKS.md, "Focused first bases".
+  /// network's graded map focused bases lie on the object more often, so few bases suffice. They
+  /// also crowd onto the map's most confident part; the later bases keep the paper's spread over
+  /// the segment, which flat maps (simulated ones) need to cover the object.
   int focused_bases = 10;
   /// Adaptive stop (BaseConsensus; 0: always run `bases`, as the paper does): the bases run in
   /// blocks of kConsensusBlock, and after each block the loop ends once this many best bases so
   /// far all put the object in the same place, up to its symmetries (ADD-S below
   /// instance_separation of the diameter) and, given a free-space check, the best one keeps its
   /// surface out of free space. For a single instance only: with instances > 1 every base runs,
-  /// since the next instance may come from any of them. On the evaluation sets it found as many
-  /// objects as 100 bases with half to a third of the hypotheses on objects in plain view
-  /// (BENCHMARKS.md, "Consensus stop").
+  /// since the next instance may come from any of them. An object in plain view reaches
+  /// consensus long before `bases`, and the later bases would only confirm it.
   int consensus_bases = 8;
   static constexpr int kConsensusBlock = 10;
   /// Distinct poses to return per object (a bin of identical objects); 1 returns the best only.

@@ -1,17 +1,17 @@
 #pragma once
-// Nearest-point queries within a fixed radius, for the verification inner loop. Cells of the
-// radius each list every point within the radius of any place in the cell, contiguously, so a
-// query is one cell lookup and a scan of 5 to 11 points on the segments of BENCHMARKS.md (cells of
-// the radius and their 27-cell neighbourhood would scan about 12 behind 27 lookups; cells of half
-// the radius scan fewer but cost four times the entries and memory, and were slower). Building
-// costs about 21 entries per point, which pays off when, as in scoring, queries outnumber points by
-// orders of magnitude. The lists hold 4-byte indices into one copy of the points.
+// Nearest-point queries within a fixed radius, for the verification inner loop. Cells of the radius
+// each list every point within the radius of any place in the cell, contiguously, so a query is one
+// cell lookup and a scan of a short list (cells of the radius and their 27-cell neighbourhood would
+// scan about as many points behind 27 lookups; cells of half the radius scan fewer but cost four
+// times the entries and memory). Building costs about 21 entries per point (the cells within the
+// radius of it on average), which pays off when, as in scoring, queries outnumber points by orders
+// of magnitude. The lists hold 4-byte indices into one copy of the points.
 //
 // The cells come in blocks of 4 x 4 x 4, stored only where points are, found through a dense index
 // of blocks over the points' bounding box grown by the radius. A segment's points lie on surfaces
 // spread over a box up to a metre or more wide (background pixels above the probability
 // threshold), where one dense index of cells would need millions of them; capping their number
-// instead made the cells grow to 14-19 mm on such segments and the scans several times longer.
+// instead would grow the cells well beyond the radius on such segments, and the scans with them.
 // The blocks cost one more load per query and no hashing.
 
 #include <Eigen/Core>
