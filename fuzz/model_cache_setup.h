@@ -26,7 +26,7 @@ inline ModelPreparationParams cacheFuzzParams() {
 
 /// Writes the model file into `dir` and returns its path: a 60 x 40 x 30 mm box as 5 x 5 points on
 /// each face, a point model. A mesh would be sampled densely (20000 points at least) on every
-/// rebuild, which took most of a fuzz run; the cache's parsers do not care which it is.
+/// rebuild, which would take most of a fuzz run; the cache's parsers do not care which it is.
 inline std::string writeCacheFuzzModel(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   const Eigen::Vector3f half(0.03f, 0.02f, 0.015f);

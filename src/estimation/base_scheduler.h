@@ -45,8 +45,8 @@ class BaseDispenser {
 
 /// With no more bases than ICP candidates, every base's best is a candidate: a thread out of bases
 /// begins refining those of finished bases (their first steps, firstSteps) while the other threads
-/// still run theirs. At 3 bases on 2 cores one core used to run the third base alone and then the
-/// third ICP screening alone. The refinements are the same whenever they run.
+/// still run theirs, rather than idle while one core runs the last base alone and then its ICP
+/// screening alone. The refinements are the same whenever they run.
 class EarlyRefinements {
  public:
   /// Off (nothing is refined early) unless `enabled`; `steps` are the steps each one takes.

@@ -16,8 +16,8 @@ double secondsSince(Clock::time_point t) {
 
 /// The rounds in which the hypotheses of a base are scored on their heads: after each share of the
 /// head, the best `width` x finished_per_base of them go on (after the last, to be finished). An
-/// early round (a quarter of the head is often some 10 scene lookups) only has to keep the best
-/// few in, and on planar bases the rounds drop most of the hypotheses long before the head's end.
+/// early round (a quarter of the head, a few scene lookups) only has to keep the best few in, and
+/// on planar bases the rounds drop most of the hypotheses long before the head's end.
 struct HeadRound {
   float share;
   size_t width;

@@ -40,10 +40,10 @@ Hypothesis refine(const Hypothesis& h, const RefinementContext& c, long& steps) 
 /// The `first` best of `ranked` refined, in parallel: each refinement is independent and reads only
 /// shared const state. With `screen`, every candidate first takes firstSteps() steps, and only the
 /// IcpParams::finalists best of them by the judged objective take the others: a candidate's first
-/// steps settle whether it is in the running, and most of the ICP time went into the later steps
-/// of candidates that then lost. When several instances are wanted every candidate may be one, and
-/// all are refined to the end. `early`, per base, holds refinements that the base loop began
-/// (their first steps taken); the others begin here. Adds the ICP steps taken to `steps`.
+/// steps settle whether it is in the running, and most of the ICP time would go into the later
+/// steps of candidates that then lose. When several instances are wanted every candidate may be
+/// one, and all are refined to the end. `early`, per base, holds refinements that the base loop
+/// began (their first steps taken); the others begin here. Adds the ICP steps taken to `steps`.
 std::vector<Hypothesis> refineCandidates(const std::vector<Hypothesis>& ranked, size_t first,
                                          bool screen, const RefinementContext& c,
                                          std::vector<std::optional<Refinement>>& early, int threads,

@@ -23,8 +23,8 @@ struct Voxel {
 };
 
 /// Voxel key to group, by open addressing with linear probing in a power-of-two table kept at
-/// most half full. std::unordered_map allocated a node for every voxel and divided by a prime on
-/// every lookup, which cost a fifth of the grouping pass where voxels hold a few pixels each.
+/// most half full, rather than std::unordered_map, which allocates a node for every voxel and
+/// divides by a prime on every lookup: costly where voxels hold a few pixels each.
 class GroupOfKey {
  public:
   /// The group of `key`, or `next`, which the key then maps to, when the key is new.
@@ -126,8 +126,8 @@ int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, 
 namespace {
 
 /// Rows of a chunk: the image is cut into chunks of kChunkRows rows, handed to the threads as they
-/// come free (the object's pixels crowd into a few rows, and halves of the image left one thread
-/// idle for most of the scan). The chunks are the same for every thread count, and so is the
+/// come free (the object's pixels crowd into a few rows, and halves of the image would leave one
+/// thread idle for most of the scan). The chunks are the same for every thread count, and so is the
 /// result.
 constexpr int kChunkRows = 16;
 constexpr uint64_t kNoKey = ~uint64_t{0};  // packVoxelCell never sets the top bit
@@ -235,10 +235,9 @@ void scanRow(const SegmentInput& in, int v, Chunk& chunk, Scanner& scanner, Left
 /// The pixels above epsilon with depth, on every stride-th row and column, grouped by voxel (each
 /// pixel is its own group at voxel size 0) in image order, each group summed in that order. Most
 /// of an image is background, below epsilon: a block of 16 scanned pixels with none above it is
-/// skipped after 16 branch-free comparisons (a test and a branch per pixel cost 10 instructions,
-/// 3 M per 640x480 image, a fifth of the cat's soft segment). A voxel spans several pixels, so the
-/// key of the pixel to the left or above is usually the same: remembering their groups skips most
-/// hash lookups. A remembered key always maps to its group.
+/// skipped after 16 branch-free comparisons, cheaper than a test and a branch per pixel. A voxel
+/// spans several pixels, so the key of the pixel to the left or above is usually the same:
+/// remembering their groups skips most hash lookups. A remembered key always maps to its group.
 void scanChunk(const SegmentInput& in, std::ptrdiff_t c, Chunk& chunk, Scanner& scanner) {
   if (scanner.dirty) {
     scanner.group_of_key.clear();

@@ -23,10 +23,10 @@ double secondsSince(Clock::time_point t) {
 }
 
 /// The consensus stop's free-space limit: the best base's pose may put at most this share of its
-/// camera-facing surface where the sensor sees through. Of the wrong poses agreement alone stopped
-/// on, slid boxes and turned-over blocks had 19-51% there (refined); objects whose best raw pose
-/// exceeds the limit just run every base. The unrefined pose is judged: judged after ICP, wrong
-/// poses passed more often.
+/// camera-facing surface where the sensor sees through. The wrong poses that agreement alone stops
+/// on (slid boxes, turned-over blocks) put far more there; objects whose best raw pose exceeds the
+/// limit just run every base. The unrefined pose is judged: ICP also pulls wrong poses out of
+/// free space.
 constexpr float kConsensusFreeSpace = 0.05f;
 
 /// The scorer and the ICP refiner of a segment. Without instance regions each builds a

@@ -35,11 +35,11 @@ const Eigen::Vector3f kNoNormal =
 /// Smallest-eigenvalue eigenvector of a covariance, or NaN if the points are (nearly) collinear
 /// (second eigenvalue at most 1e-3 of the largest). Written out rather than Eigen's closed-form
 /// SelfAdjointEigenSolver::computeDirect, which reaches all three eigenvalues through atan2, sin
-/// and cos and builds all three eigenvectors: with libm's calls that was a third of a segment
-/// normal's cost. Here the smallest root of the characteristic cubic comes by Newton's method from
-/// 0, and the eigenvector as the kernel of the shifted matrix (the cross product of two of its
-/// columns, chosen as Eigen chooses them). Double precision keeps the kernel exact when the two
-/// smaller eigenvalues nearly coincide; the normal is then any direction across the largest one.
+/// and cos (libm calls) and builds all three eigenvectors, for one normal per segment point. Here
+/// the smallest root of the characteristic cubic comes by Newton's method from 0, and the
+/// eigenvector as the kernel of the shifted matrix (the cross product of two of its columns, chosen
+/// as Eigen chooses them). Double precision keeps the kernel exact when the two smaller eigenvalues
+/// nearly coincide; the normal is then any direction across the largest one.
 Eigen::Vector3f planeNormal(const Eigen::Matrix3f& covariance) {
   const double trace = covariance.trace();
   if (!(trace > 0)) return kNoNormal;                           // no spread, or NaN

@@ -22,9 +22,9 @@ void PointGrid::assign(const std::vector<Eigen::Vector3f>& points, float cell_si
     return;
   }
   // The grid is rebuilt for every base of the congruent-set search, so the passes below are
-  // written for the compiler: Eigen's per-point allFinite, cwiseMin and cwiseMax cost about twice
-  // these plain loops. A NaN would slip through the bounding box (comparisons ignore it) into a
-  // cell, hence the finiteness pass, over all coordinates as one float array (vectorized).
+  // written for the compiler: plain loops, cheaper than Eigen's per-point allFinite, cwiseMin and
+  // cwiseMax. A NaN would slip through the bounding box (comparisons ignore it) into a cell, hence
+  // the finiteness pass, over all coordinates as one float array (vectorized).
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "points must be packed floats");
   const float* coordinates = points.front().data();
   int not_finite = 0;

@@ -23,8 +23,8 @@ double adjugateEntry(const Eigen::Matrix4d& s, int i, int j) {
 /// quaternion is the eigenvector of Horn's 4x4 key matrix K for its largest eigenvalue, found by
 /// Newton steps on det(lambda I - K) from above, then read off a column of adj(K - lambda I).
 /// Written by hand because it is a fit per congruent set (tens of thousands per object): it gives
-/// Eigen::umeyama's rotation to about 1e-8 at a third of its cost, which spends most of its time
-/// in a general 3x3 SVD. For collinear points (a repeated eigenvalue) the column is some optimal
+/// Eigen::umeyama's rotation to about 1e-8 without the general 3x3 SVD where umeyama spends most
+/// of its time. For collinear points (a repeated eigenvalue) the column is some optimal
 /// rotation about their line; nothing when no column stands out (coincident points).
 std::optional<Eigen::Matrix3d> quaternionFit(const Eigen::Matrix<double, 3, 4>& a,
                                              const Eigen::Matrix<double, 3, 4>& b) {

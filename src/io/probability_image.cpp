@@ -37,9 +37,8 @@ cv::Mat toProbabilityImage(const cv::Mat& image, double uint16_scale) {
   // Float maps may overshoot by rounding; integer maps are exact, so any value above the scale is
   // an encoding error.
   const float tolerance = image.depth() == CV_32F || image.depth() == CV_64F ? 1e-3f : 1e-6f;
-  // The range test and the clamp are branch-free loops, vectorized at -O3 (a test and a branch per
-  // pixel cost 10 instructions, 3 M per 640x480 image); a row that fails is scanned again for the
-  // message.
+  // The range test and the clamp are branch-free loops, vectorized at -O3 rather than a test and a
+  // branch per pixel; a row that fails is scanned again for the message.
   const float lo = -tolerance, hi = 1.0f + tolerance;
   auto outside = [&](float p) {  // NaN is outside; no short-circuit, so the loop stays branch-free
     return static_cast<int>(!(p >= lo)) | static_cast<int>(!(p <= hi));

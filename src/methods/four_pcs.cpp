@@ -8,8 +8,8 @@
 //                    bounding-box diagonal wide (ia_fpcs.hpp); the Super4PCS/OpenGR authors
 //                    advise dividing the overlap by how much larger the bounding box is than the
 //                    object (OpenGR issue #74), since a base wider than the object has no
-//                    congruent set on it. With 0.5 on the packed dove bin (8 instances) every
-//                    base spanned several boxes and no candidate was ever found.
+//                    congruent set on it. With 0.5 on a packed bin of identical instances every
+//                    base spans several of them and finds no candidate.
 //   number of samples 100 model samples, as PCL's FPCS test (test_fpcs_ia_data.h); drawn here
 //   max. iterations  the StoCS base budget (one PCL iteration = one base with its congruent sets)
 //   max. time        the StoCS time budget rounded up to whole seconds (PCL counts whole seconds
@@ -90,7 +90,7 @@ std::optional<BaselineHypothesis> alignFourPcs(FourPcs& aligner, const SoftSegme
   const ObjectModel& model = input.model->model;
   const StocsParams& budget = input.params->stocs;
   // Every pair of source points is compared per base and every candidate validated on all of them,
-  // so the full model (~500 samples) costs seconds per base. Drawn here rather than by
+  // so the cost per base grows with the square of the source's size. Drawn here rather than by
   // setNumberOfSamples(), which draws with the clock-seeded std::rand in initCompute().
   const std::vector<size_t> source =
       sampleIndices(model.size(), kSourceSamples, streamSeed(budget.seed, 1));
