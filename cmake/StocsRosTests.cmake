@@ -26,8 +26,8 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   DEPENDS stocs_ros_make_test_data
   COMMENT "Writing the generated dataset of the ROS tests")
 # The demo's scene (scripts/demo.sh makes the same one), written by the CLI as a user would. After
-# the writer above, which empties the whole folder first: side by side (make -j2) it once deleted
-# the scene's models/ while the CLI was writing them.
+# the writer above, which empties the whole folder first: side by side (make -j2) it would delete
+# the scene's models/ while the CLI writes them.
 add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
   COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/synth_scene --objects 6 --distractors 2 --seed 1
     --quiet

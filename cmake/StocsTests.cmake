@@ -15,8 +15,8 @@ else()
   include(GoogleTest)
 endif()
 
-# The tests' shared helpers, compiled once rather than into every test program (under the
-# sanitizers that was 9 s of CPU per program).
+# The tests' shared helpers, compiled once rather than into every test program: under the
+# sanitizers every compilation of them is slow.
 add_library(stocs_test_support STATIC ${PROJECT_SOURCE_DIR}/test/test_support.cpp)
 target_include_directories(stocs_test_support PUBLIC ${PROJECT_SOURCE_DIR}/test)
 target_link_libraries(stocs_test_support PUBLIC stocs_core GTest::gtest opencv_imgproc opencv_imgcodecs)
@@ -47,7 +47,7 @@ function(stocs_add_gtest name)
 endfunction()
 
 # scripts/run_tests.sh turns this off in its catkin build: it runs these tests in its sanitizer
-# build instead (building and running them in both cost 4 minutes of a CI run on a cold cache).
+# build instead (building and running them in both would cost every CI run minutes).
 # A core option, named as the others (see CMakeLists.txt).
 #catkin_lint: ignore_once GLOBAL_VAR_COLLISION
 option(STOCS_CORE_TESTS "Build the unit, CLI and real-data tests of the ROS-free core" ON)

@@ -1,13 +1,12 @@
 #!/usr/bin/env bash
-# Reproduces every `stocs bench` / `stocs eval` figure of BENCHMARKS.md's method comparison and
-# real-frame sections. Builds nothing: runs the `stocs` tool given by STOCS_TOOL (default: the
-# catkin workspace's, from scripts/build.sh).
+# Reproduces the `stocs bench` / `stocs eval` figures of BENCHMARKS.md. Builds nothing: runs the
+# `stocs` tool given by STOCS_TOOL (default: the catkin workspace's, from scripts/build.sh).
 #   scripts/bench_all.sh DATASETS OUT        e.g. scripts/bench_all.sh ../shared/datasets /tmp/bench
 # OUT receives:
 #   real/    every method on every dataset with its real network maps (only lmo-cat and
 #            rutgers-packed scene 0 have them; the others are skipped with a note), with the
 #            segmentation-threshold sweep (0.3 to 0.9: below 0.3 the cat's segment is most of the
-#            image and PCL's K4PCS runs for over 8 minutes per object) and the time-budget sweep
+#            image and PCL's K4PCS takes too long per object) and the time-budget sweep
 #   sim/     every method on every dataset with simulator maps where no real map exists
 #            (presets mild and noisy, all frames), main table only, at most 10 s per object
 #            (`--time-budget 10`: never reached by StoCS at 100 bases; PCL's 4PCS stops after the
@@ -20,7 +19,7 @@
 #            2, 3, 4, 5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all five
 #            methods, both StoCS variants swept) and on the simulator presets of lmo-cat,
 #            rutgers-packed and ycbv-0000 (sim/: StoCS swept beside PPF, the fastest baseline; the
-#            4PCS methods take half an hour on these presets, see sim/ above); every image is
+#            4PCS methods are too slow to sweep on these presets, see sim/ above); every image is
 #            processed 5 times and times are medians (`--repeats 5`); each report's "Speed at equal
 #            or better accuracy" table gives the ratios
 # and log.txt with the load average before and after each part. STOCS_BENCH_PARTS selects parts
@@ -63,8 +62,8 @@ fi
 
 if [[ $parts == *" equal "* ]]; then
   note "equal accuracy: start"
-  # Every image 5 times in a row, times the medians (`--repeats`): at 2 to 5 bases StoCS takes
-  # 2-3 ms per object, and single runs of that length moved by a third between runs.
+  # Every image 5 times in a row, times the medians (`--repeats`): at a few bases StoCS takes
+  # milliseconds per object, and single runs that short vary too much from run to run.
   swept=(--no-threshold-sweep --no-budget-sweep --base-counts 2,3,4,5,10,20,50,100 --cache-dir "$out/cache"
          --run-timeout 300 --repeats 5)
   "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --prob real \

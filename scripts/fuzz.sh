@@ -12,8 +12,7 @@ shift || true
 OUT="$REPO/build/fuzz"
 mkdir -p "$OUT"
 
-# -O1 with line tables only, as OSS-Fuzz builds its targets (a cold fuzz stage: 413 s at -O2 -g,
-# 378 s with these).
+# -O1 with line tables only, as OSS-Fuzz builds its targets: quicker to compile than -O2 -g.
 cmake -S "$REPO" -B "$OUT" -DSTOCS_WITH_ROS=OFF -DSTOCS_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$OUT.cmake.log" 2>&1 ||
@@ -40,8 +39,8 @@ for t in "${TARGETS[@]}"; do
   log="$OUT/logs/$t.log"
   result=ok
   start=$SECONDS
-  # -timeout: an input that takes 60 s is a hang, reported like a crash (fuzz_model_cache needs
-  # up to ~20 s per rejected entry on a loaded machine, as it rebuilds the model).
+  # -timeout: an input that takes 60 s is a hang, reported like a crash (fuzz_model_cache
+  # rebuilds the model after every rejected entry, which takes seconds on a loaded machine).
   "$OUT/$t" -max_total_time="$SECONDS_PER_TARGET" -timeout=60 -print_final_stats=1 \
     -artifact_prefix="$OUT/artifacts/$t-" "$OUT/corpus/$t" "$REPO/fuzz/corpus/$t" > "$log" 2>&1 ||
     result=FAILED

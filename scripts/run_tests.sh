@@ -61,8 +61,8 @@ fi
 
 # The core's tests, in an AddressSanitizer + UndefinedBehaviorSanitizer build unless
 # STOCS_SKIP_SANITIZERS=1 (then in a plain build). -O1 with line tables only (-g1), as OSS-Fuzz
-# builds, compiles in half the time of -O2 -g under the sanitizers, and the reports keep their
-# file and line. Without the Google Benchmark programs: no test runs them.
+# builds, compiles much faster than -O2 -g under the sanitizers, and the reports keep their file
+# and line. Without the Google Benchmark programs: no test runs them.
 if [ "${STOCS_SKIP_SANITIZERS:-0}" != 1 ]; then
   CORE="$REPO/build/sanitize"
   SANITIZE=ON
@@ -88,8 +88,8 @@ stage_done "the core's tests"
 stage_done "the C++ example"
 
 if [ "${STOCS_SKIP_FUZZ:-0}" != 1 ]; then
-  # 9 targets x 15 s plus the fuzz build: 378 s on 2 cores from an empty ccache (BENCHMARKS.md,
-  # "Twelfth session"), seconds of building when warm.
+  # The fuzz build (long from an empty ccache, quick when warm), then every target for
+  # STOCS_FUZZ_SECONDS (default 15).
   "$REPO/scripts/fuzz.sh" "${STOCS_FUZZ_SECONDS:-15}"
   stage_done "the fuzz build and runs"
 fi

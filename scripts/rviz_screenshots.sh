@@ -14,8 +14,8 @@ set +u
 source "$WS/devel/setup.bash"
 set -u
 
-# Seconds rviz gets to draw once every marker has arrived: it renders 1-2 frames a second in
-# software (Mesa llvmpipe) on two busy cores.
+# Seconds rviz gets to draw once every marker has arrived: it renders slowly in software (Mesa
+# llvmpipe) on busy cores.
 settle=15
 
 # Inside Xvfb: runs `roslaunch stocs_ros ARGS...`, waits for both kinds of markers, and saves the
