@@ -3,6 +3,7 @@
 // baselines are compared on exactly the same inputs (`stocs estimate --method`, `stocs bench`).
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,6 +67,13 @@ class PoseMethod {
   /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
   virtual MethodResult estimate(const MethodInput& input) = 0;
 };
+
+using MethodFactory = std::function<std::unique_ptr<PoseMethod>(const MethodOptions&)>;
+
+/// Adds a method to those `makeMethod` knows, or replaces the one of that name: methods of a
+/// library the others do not link (e.g. the Open3D baselines, open3d_methods.h) are added by the
+/// program that links it, before it parses its options. Not thread-safe.
+void registerMethod(const std::string& name, MethodFactory factory);
 
 /// Names `makeMethod` accepts.
 std::vector<std::string> methodNames();
