@@ -18,3 +18,25 @@ if(STOCS_CATKIN)
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 endif()
+
+# The Open3D baselines (src/methods/open3d, registered by open3d_methods.h), for benchmarks only:
+# a library of their own, built where Open3D is found (CMakeLists.txt) and linked into the `stocs`
+# tool and the baselines' test only, so that the core, the node and the ROS build never need it.
+# Linking it defines STOCS_HAVE_OPEN3D.
+if(Open3D_FOUND)
+  file(GLOB STOCS_OPEN3D_METHOD_SOURCES CONFIGURE_DEPENDS
+    ${PROJECT_SOURCE_DIR}/src/methods/open3d/*.cpp)
+  add_library(stocs_methods_open3d ${STOCS_OPEN3D_METHOD_SOURCES})
+  target_include_directories(stocs_methods_open3d PRIVATE ${PROJECT_SOURCE_DIR}/src/methods)
+  target_link_libraries(stocs_methods_open3d PUBLIC stocs_methods
+    PRIVATE Open3D::Open3D OpenMP::OpenMP_CXX)
+  target_compile_definitions(stocs_methods_open3d PUBLIC STOCS_HAVE_OPEN3D)
+  set_target_properties(stocs_methods_open3d PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  if(STOCS_CATKIN)
+    install(TARGETS stocs_methods_open3d
+      ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+      LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+  endif()
+else()
+  message(STATUS "Open3D not found: the o3d-ransac and o3d-fgr baselines are not built")
+endif()

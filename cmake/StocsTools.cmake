@@ -2,6 +2,9 @@
 file(GLOB STOCS_TOOL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/tools/*.cpp)
 add_executable(stocs ${STOCS_TOOL_SOURCES})
 target_link_libraries(stocs PRIVATE stocs_core stocs_methods CLI11::CLI11 opencv_imgproc opencv_imgcodecs)
+if(TARGET stocs_methods_open3d)
+  target_link_libraries(stocs PRIVATE stocs_methods_open3d)
+endif()
 
 if(STOCS_CATKIN)
   install(TARGETS stocs RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -16,7 +16,7 @@
 #            segmentation, noise-free depth), and the dove bin without its boundary map;
 #            summarised in seeds/summary.md
 #   equal/   issue 6's side by side at equal accuracy: every method at its defaults beside StoCS at
-#            2, 3, 4, 5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all five
+#            2, 3, 4, 5, 10, 20, 50 and 100 bases (`--base-counts`), on the real maps (real/: all seven
 #            methods, both StoCS variants swept) and on the simulator presets of lmo-cat,
 #            rutgers-packed and ycbv-0000 (sim/: StoCS swept beside PPF, the fastest baseline; the
 #            4PCS methods are too slow to sweep on these presets, see sim/ above); every image is
@@ -42,7 +42,8 @@ datasets=(--dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --dataset "
           --dataset "$data/pcl-milk")
 # One model cache for all parts, so that no run pays for preprocessing; a run (one method on one
 # dataset and source) that takes over 5 minutes is killed and its targets count as missing.
-common=(--methods stocs,stocs-hard,fpcs,kfpcs,ppf --cache-dir "$out/cache" --run-timeout 300)
+common=(--methods stocs,stocs-hard,fpcs,kfpcs,ppf,o3d-ransac,o3d-fgr --cache-dir "$out/cache"
+        --run-timeout 300)
 
 parts=" ${STOCS_BENCH_PARTS:-real sim seeds equal} "
 
@@ -67,8 +68,8 @@ if [[ $parts == *" equal "* ]]; then
   swept=(--no-threshold-sweep --no-budget-sweep --base-counts 2,3,4,5,10,20,50,100 --cache-dir "$out/cache"
          --run-timeout 300 --repeats 5)
   "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" --prob real \
-    --methods stocs,stocs-hard,fpcs,kfpcs,ppf --sweep-methods stocs,stocs-hard "${swept[@]}" \
-    --out "$out/equal/real"
+    --methods stocs,stocs-hard,fpcs,kfpcs,ppf,o3d-ransac,o3d-fgr --sweep-methods stocs,stocs-hard \
+    "${swept[@]}" --out "$out/equal/real"
   "$tool" bench --dataset "$data/lmo-cat" --dataset "$data/rutgers-packed" \
     --dataset "$data/ycbv-0000" --prob sim:mild --prob sim:noisy --methods stocs,ppf \
     --sweep-methods stocs --time-budget 10 "${swept[@]}" --out "$out/equal/sim"

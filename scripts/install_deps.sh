@@ -28,6 +28,9 @@ PACKAGES=(
   catkin-lint
   # scripts/rviz_screenshots.sh takes its screenshots with ImageMagick's import.
   imagemagick
+  # Open3D 0.16 for the o3d-ransac and o3d-fgr baselines of `stocs bench` (built only where found;
+  # 16 packages, about 90 MB installed, most of it Filament, Embree and Open3D itself).
+  libopen3d-dev
 )
 
 missing=()

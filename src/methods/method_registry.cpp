@@ -3,6 +3,7 @@
 
 #include <functional>
 #include <map>
+#include <utility>
 
 #include "baseline_methods.h"
 #include "stocs/methods/pose_method.h"
@@ -12,10 +13,9 @@
 namespace stocs {
 namespace {
 
-using Factory = std::function<std::unique_ptr<PoseMethod>(const MethodOptions&)>;
-
-const std::map<std::string, Factory>& registry() {
-  static const std::map<std::string, Factory> methods = {
+/// The methods of this library; registerMethod() adds those of libraries it does not link.
+std::map<std::string, MethodFactory>& registry() {
+  static std::map<std::string, MethodFactory> methods = {
       {"fpcs", makeFpcsMethod},
       {"kfpcs", makeKfpcsMethod},
       {"ppf", makePpfMethod},
@@ -29,6 +29,10 @@ const std::map<std::string, Factory>& registry() {
 }
 
 }  // namespace
+
+void registerMethod(const std::string& name, MethodFactory factory) {
+  registry()[name] = std::move(factory);
+}
 
 std::vector<std::string> methodNames() {
   std::vector<std::string> names;

@@ -6,8 +6,14 @@
 
 #include "commands.h"
 #include "stocs/util/error.h"
+#ifdef STOCS_HAVE_OPEN3D
+#include "stocs/methods/open3d_methods.h"
+#endif
 
 int main(int argc, char** argv) {
+#ifdef STOCS_HAVE_OPEN3D
+  stocs::registerOpen3dMethods();  // before the options, whose help lists the methods
+#endif
   CLI::App app{"stocs: 6D object pose estimation with Stochastic Congruent Sets (BMVC 2018)"};
   app.require_subcommand(1);
   app.option_defaults()->always_capture_default();

@@ -4,6 +4,7 @@
 // (`stocs estimate --method`, `stocs bench`).
 
 #include <Eigen/Geometry>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,6 +32,13 @@ class PoseMethod {
   /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
   virtual PoseEstimate estimate(const ObjectInput& input) = 0;
 };
+
+using MethodFactory = std::function<std::unique_ptr<PoseMethod>(const MethodOptions&)>;
+
+/// Adds a method to those `makeMethod` knows, or replaces the one of that name: methods of a
+/// library the others do not link (e.g. the Open3D baselines, open3d_methods.h) are added by the
+/// program that links it, before it parses its options. Not thread-safe.
+void registerMethod(const std::string& name, MethodFactory factory);
 
 /// Names `makeMethod` accepts.
 std::vector<std::string> methodNames();
