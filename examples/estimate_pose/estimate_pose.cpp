@@ -5,7 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/stocs.h"
@@ -25,7 +27,8 @@ int main(int argc, char** argv) {
     stocs::Estimator estimator;  // every parameter at its default (docs/parameters.md)
     stocs::Frame frame = stocs::Frame::fromDepth(depth, camera.intrinsics(depth.cols, depth.rows),
                                                  camera.depth_scale / 1000.0);
-    for (const stocs::BopGtInstance& g : dataset.sceneGroundTruth(scene).at(image)) {
+    const std::map<int, std::vector<stocs::BopGtInstance>> truth = dataset.sceneGroundTruth(scene);
+    for (const stocs::BopGtInstance& g : truth.at(image)) {
       const std::string name = "obj_" + std::to_string(g.obj_id);
       if (estimator.model(name) ||
           !std::filesystem::exists(dataset.probabilityPath(scene, image, g.obj_id))) {
