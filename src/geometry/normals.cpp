@@ -156,6 +156,11 @@ std::vector<Eigen::Vector3f> estimatePcaNormals(const std::vector<Eigen::Vector3
   return normals;
 }
 
+/// Neighbours searched for the nearest point elsewhere (medianSpacing).
+constexpr int kSpacingNeighbours = 8;
+/// Pixels across the object in a visibility z-buffer at most (2048^2 floats: 16 MB).
+constexpr float kMaxZBufferSide = 2048;
+
 float medianSpacing(const std::vector<Eigen::Vector3f>& points) {
   if (points.size() < 2) return 0;
   KnnIndex index(points);
@@ -164,9 +169,13 @@ float medianSpacing(const std::vector<Eigen::Vector3f>& points) {
   std::vector<size_t> nn;
   std::vector<float> d2;
   for (size_t i = 0; i < points.size(); i += stride) {
-    index.knn(points[i], 2, nn, d2);
-    if (nn.size() == 2) spacing.push_back(std::sqrt(d2[1]));
+    // The nearest point elsewhere: a model file may repeat a point (a face's vertex written once
+    // per face), and a spacing of 0 would make the visibility z-buffers unbounded.
+    index.knn(points[i], kSpacingNeighbours, nn, d2);
+    const auto other = std::find_if(d2.begin(), d2.end(), [](float d) { return d > 0; });
+    if (other != d2.end()) spacing.push_back(std::sqrt(*other));
   }
+  if (spacing.empty()) return 0;
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   return spacing[spacing.size() / 2];
 }
@@ -177,7 +186,10 @@ int orientNormalsByVisibility(const std::vector<Eigen::Vector3f>& points,
   const size_t n = points.size();
   if (n == 0) return 0;
   const float spacing = params.splat_radius > 0 ? params.splat_radius : medianSpacing(points);
-  const float pixel = std::max(spacing, 1e-6f);
+  // At most kMaxZBufferSide pixels across the object, whatever the spacing says.
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& p : points) box.extend(p);
+  const float pixel = std::max({spacing, box.diagonal().norm() / kMaxZBufferSide, 1e-6f});
   const float tolerance = pixel;  // depth slack for a point to count as the visible surface
 
   // votes[i] > 0: the normal faces the viewpoints that see point i.

@@ -114,6 +114,36 @@ TEST(Normals, MedianSpacingOfAGrid) {
   EXPECT_NEAR(medianSpacing(grid), 0.003f, 1e-6f);
 }
 
+// A point model that repeats its points (a face's vertices written once per face, as the fuzz
+// target's box did): the spacing is that of the distinct points, and preparing it takes no more
+// memory than without repeats (a spacing of 0 once asked for a 10 GB z-buffer).
+TEST(Normals, RepeatedPointsKeepTheSpacingAndAPointModelPrepares) {
+  std::vector<Eigen::Vector3f> grid;
+  for (int x = 0; x < 20; ++x) {
+    for (int y = 0; y < 20; ++y) {
+      for (int copy = 0; copy < 3; ++copy) grid.emplace_back(0.003f * x, 0.003f * y, 0);
+    }
+  }
+  EXPECT_NEAR(medianSpacing(grid), 0.003f, 1e-6f);
+  EXPECT_EQ(medianSpacing(std::vector<Eigen::Vector3f>(5, Eigen::Vector3f(1, 2, 3))), 0.0f);
+
+  MeshData box;
+  for (const Eigen::Vector3f& v : boxMesh({0.06f, 0.04f, 0.03f}).vertices) {
+    box.vertices.push_back(v);
+    box.vertices.push_back(v);
+  }
+  for (int k = 0; k < 200; ++k) {  // more points on the faces, so that normals can be estimated
+    const float t = static_cast<float>(k) / 200;
+    box.vertices.emplace_back(0.03f, -0.02f + 0.04f * t, -0.015f + 0.03f * (k % 7) / 6.0f);
+    box.vertices.emplace_back(-0.03f, -0.02f + 0.04f * t, -0.015f + 0.03f * (k % 5) / 4.0f);
+  }
+  ModelSamplingParams p;
+  p.sampling_ratio = 0.15f;
+  p.normal_neighbours = 8;
+  const ObjectModel m = prepareModel(box, p);
+  EXPECT_GE(m.size(), 4u);
+}
+
 // The normals' own smallest-eigenvector solver against Eigen's iterative one: with every point a
 // neighbour of every other, each PCA normal is that of the whole cloud's covariance.
 TEST(Normals, PcaNormalIsTheSmallestEigenvectorOfTheCovariance) {

@@ -52,7 +52,8 @@ int orientNormalsByVisibility(const std::vector<Eigen::Vector3f>& points,
                               std::vector<Eigen::Vector3f>& normals,
                               const VisibilityOrientationParams& params = {});
 
-/// Median distance from a point to its nearest neighbour.
+/// Median distance from a point to its nearest other point (repeated points count once); 0 when
+/// there are fewer than two distinct points.
 float medianSpacing(const std::vector<Eigen::Vector3f>& points);
 
 }  // namespace stocs
