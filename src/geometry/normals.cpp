@@ -180,16 +180,25 @@ float medianSpacing(const std::vector<Eigen::Vector3f>& points) {
   return spacing[spacing.size() / 2];
 }
 
+namespace {
+
+/// The z-buffers' pixel: a point's footprint, but at most kMaxZBufferSide pixels across the object.
+float zbufferPixel(const std::vector<Eigen::Vector3f>& points,
+                   const VisibilityOrientationParams& params) {
+  const float spacing = params.splat_radius > 0 ? params.splat_radius : medianSpacing(points);
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& p : points) box.extend(p);
+  return std::max({spacing, box.diagonal().norm() / kMaxZBufferSide, 1e-6f});
+}
+
+}  // namespace
+
 int orientNormalsByVisibility(const std::vector<Eigen::Vector3f>& points,
                               std::vector<Eigen::Vector3f>& normals,
                               const VisibilityOrientationParams& params) {
   const size_t n = points.size();
   if (n == 0) return 0;
-  const float spacing = params.splat_radius > 0 ? params.splat_radius : medianSpacing(points);
-  // At most kMaxZBufferSide pixels across the object, whatever the spacing says.
-  Eigen::AlignedBox3f box;
-  for (const Eigen::Vector3f& p : points) box.extend(p);
-  const float pixel = std::max({spacing, box.diagonal().norm() / kMaxZBufferSide, 1e-6f});
+  const float pixel = zbufferPixel(points, params);
   const float tolerance = pixel;  // depth slack for a point to count as the visible surface
 
   // votes[i] > 0: the normal faces the viewpoints that see point i.
