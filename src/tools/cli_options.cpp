@@ -32,10 +32,7 @@ void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
 }
 
 void validatePipelineOptions(const PipelineParams& p) {
-  PipelineParams& fields = const_cast<PipelineParams&>(p);  // only read
-  for (const auto& entry : PipelineParams::schema().entries()) {
-    throwParamProblem(entry.info.cliFlag(), entry.info.problem(entry.field(fields)));
-  }
+  PipelineParams::schema().validate(p, [](const ParamInfo& info) { return info.cliFlag(); });
 }
 
 void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,

@@ -115,8 +115,11 @@ class ParamSet {
 
   const std::vector<Entry>& entries() const { return entries_; }
 
-  /// Throws InputError "<prefix><key> <problem>" for the first parameter out of range.
-  void validate(const S& s, const std::string& prefix = "") const;
+  /// Throws InputError "<name> <problem>" for the first parameter out of range, its name as
+  /// `name` gives it (default: its key).
+  void validate(
+      const S& s, const std::function<std::string(const ParamInfo&)>& name =
+                      [](const ParamInfo& info) { return info.key; }) const;
 
   /// Every parameter with its value in `s` as text ("0.005", "true", "cloud"), for the docs.
   std::vector<std::pair<ParamInfo, std::string>> describe(const S& s) const {
@@ -178,11 +181,10 @@ ParamSet<S>& ParamSet<S>::nest(Sub S::*member, const std::string& key, const Par
 }
 
 template <class S>
-void ParamSet<S>::validate(const S& s, const std::string& prefix) const {
+void ParamSet<S>::validate(const S& s,
+                           const std::function<std::string(const ParamInfo&)>& name) const {
   S& fields = const_cast<S&>(s);  // the accessors give mutable references; only read here
-  for (const Entry& e : entries_) {
-    throwParamProblem(prefix + e.info.key, e.info.problem(e.field(fields)));
-  }
+  for (const Entry& e : entries_) throwParamProblem(name(e.info), e.info.problem(e.field(fields)));
 }
 
 }  // namespace stocs
