@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <chrono>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "stocs/estimation/base_sampler.h"
@@ -106,6 +107,17 @@ struct InstancePose {
   LcpDetail lcp;         ///< the alignment objective in detail (StoCS only)
   bool refined = false;  ///< ICP moved the pose and did not lower the objective
   int region = -1;       ///< instance region the pose was found in (-1: no regions)
+  /// Probability that the pose is right (ADD-S below 10% of the object's diameter), calibrated on
+  /// labelled estimates; comparable across objects, scenes and segment sizes (StoCS only).
+  float confidence = 0;
+  /// The pose may be acted on: its confidence reaches the configured minimum. A rejected pose is
+  /// kept for evaluation, but neither published nor written to results.
+  bool accepted = true;
+  std::string rejection;  ///< why the pose was not accepted (empty when accepted)
+  /// Covariance of the pose's error in the camera frame: x, y, z in metres, then rotation about
+  /// x, y and z in radians (REP 103 order, as geometry_msgs/PoseWithCovariance). Zero where the
+  /// method gives none.
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 /// What the estimation of one object gives: the pose (and further instances) with their
