@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Installs dependencies, lints the package (catkin_lint), builds, and runs every test: the ROS tests
-# in the catkin build (gtests of the wrappers, rostests, the launch file check), README's ROS
-# commands as written (scripts/check_readme_ros.sh, when STOCS_DATASETS names the real-data
-# folder), then the core's tests (unit, CLI and, with STOCS_DATASETS, the real-frame acceptance
-# tests) in an AddressSanitizer + UndefinedBehaviorSanitizer build of the ROS-free core, then a
-# short run of every fuzz target (scripts/fuzz.sh).
+# Installs dependencies, lints the package (catkin_lint) and the markdown links (check_md_links.py),
+# builds, and runs every test: the ROS tests in the catkin build (gtests of the wrappers, rostests,
+# the launch file check), README's ROS commands as written (scripts/check_readme_ros.sh, when
+# STOCS_DATASETS names the real-data folder), then the core's tests (unit, CLI and, with
+# STOCS_DATASETS, the real-frame acceptance tests) in an AddressSanitizer +
+# UndefinedBehaviorSanitizer build of the ROS-free core, then a short run of every fuzz target
+# (scripts/fuzz.sh).
 # Exits non-zero when anything fails. STOCS_SKIP_SANITIZERS=1 runs the core's tests in a build
 # without sanitizers, STOCS_SKIP_FUZZ=1 skips the fuzzing; STOCS_FUZZ_SECONDS sets the time per
 # fuzz target (default 15).
@@ -37,7 +38,12 @@ if [ $lint_status -ne 0 ]; then
   echo "run_tests: catkin_lint FAILED"
   exit 1
 fi
-stage_done "catkin_lint"
+# Relative links of README.md and docs/: every file and heading anchor they name exists.
+if ! python3 "$REPO/scripts/check_md_links.py"; then
+  echo "run_tests: markdown links FAILED"
+  exit 1
+fi
+stage_done "catkin_lint and the markdown links"
 
 # The catkin build holds the ROS tests; the core's tests (unit, CLI, real data) run once, in the
 # sanitizer build below, rather than in both builds.

@@ -27,8 +27,8 @@ namespace stocs_ros {
 
 class ScenePublisher {
  public:
-  /// Reads the private parameters (see the README) and starts the timer. Throws stocs::InputError
-  /// for a bad parameter, dataset or config.
+  /// Reads the private parameters (docs/ros.md, "Scene publisher") and starts the timer. Throws
+  /// stocs::InputError for a bad parameter, dataset or config.
   explicit ScenePublisher(ros::NodeHandle pnh);
 
  private:

@@ -1,4 +1,4 @@
-// Plays a BOP dataset as ROS topics (see scene_publisher.h and the README's "ROS node" section).
+// Plays a BOP dataset as ROS topics (see scene_publisher.h and docs/ros.md, "Scene publisher").
 #include "stocs_ros/run_node.h"
 #include "stocs_ros/scene_publisher.h"
 

@@ -1,4 +1,4 @@
-// The StoCS pose estimation node (see stocs_node.h and the README's "ROS node" section).
+// The StoCS pose estimation node (see stocs_node.h and docs/ros.md).
 #include "stocs_ros/run_node.h"
 #include "stocs_ros/stocs_node.h"
 

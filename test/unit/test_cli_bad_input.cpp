@@ -1,4 +1,4 @@
-// The `stocs` tool on bad files (rows of the README's "Bad input" table): bad models and unit
+// The `stocs` tool on bad files (rows of docs/bad_inputs.md): bad models and unit
 // mistakes exit 2 with the message naming the file; a corrupt or unwritable cache never stops a
 // run; an out-of-range probability map in a dataset exits 2 naming the file and pixel.
 #include <gtest/gtest.h>
