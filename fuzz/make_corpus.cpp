@@ -72,6 +72,10 @@ void bopSeeds(const fs::path& corpus) {
             R"({"1": {"diameter": 102.1, "symmetries_discrete": [[-1, 0, 0, 0, 0, -1, 0, 0, 0, )"
             R"(0, 1, 0, 0, 0, 0, 1]]}, "2": {"diameter": 80, "symmetries_continuous": )"
             R"([{"axis": [0, 0, 1], "offset": [0, 0, 0]}]}, "3": {"diameter": 50.5}})");
+  writeSeed(corpus, "fuzz_bop_targets", "targets.json",
+            R"([{"scene_id": 1, "im_id": 0, "obj_id": 2, "inst_count": 1},)"
+            R"( {"scene_id": 1, "im_id": 0, "obj_id": 5, "inst_count": 0},)"
+            R"( {"scene_id": 2, "im_id": 3, "obj_id": 1, "inst_count": 3}])");
   writeSeed(corpus, "fuzz_bop_results", "results.csv",
             "scene_id,im_id,obj_id,score,R,t,time\n"
             "1,0,2,0.8,1 0 0 0 1 0 0 0 1,10 -20 700,1.5\n"

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <set>
 
+#include "stocs/io/bop_targets.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/util/error.h"
 
@@ -18,18 +20,56 @@ std::vector<Target> listTargets(const BopDataset& dataset, const std::vector<int
     }
   }
   const std::set<int> wanted(objects.begin(), objects.end());
-  std::set<Target> targets;
+  std::map<Target, int> counts;
   for (int scene : scenes.empty() ? dataset.sceneIds() : scenes) {
     for (const auto& [im, instances] : dataset.sceneGroundTruth(scene)) {
       for (const BopGtInstance& g : instances) {
         if ((wanted.empty() || wanted.count(g.obj_id)) &&
             (!source || source->available(scene, im, g.obj_id))) {
-          targets.insert({scene, im, g.obj_id});
+          ++counts[{scene, im, g.obj_id}];
         }
       }
     }
   }
-  return {targets.begin(), targets.end()};
+  std::vector<Target> targets;
+  for (const auto& [target, count] : counts) {
+    targets.push_back(target);
+    targets.back().inst_count = count;
+  }
+  return targets;
+}
+
+std::vector<Target> targetsFromFile(const BopDataset& dataset, const std::filesystem::path& file,
+                                    const std::vector<int>& scenes,
+                                    const std::vector<int>& objects) {
+  const auto selected = [](const std::vector<int>& list, int id) {
+    return list.empty() || std::find(list.begin(), list.end(), id) != list.end();
+  };
+  std::map<int, std::map<int, std::vector<BopGtInstance>>> gt;  // scene -> image -> instances
+  std::vector<Target> targets;
+  for (const Target& t : readBopTargets(file)) {
+    if (!selected(scenes, t.scene_id) || !selected(objects, t.obj_id)) continue;
+    const std::string where = fmt::format("{}: target scene {} image {} object {}", file.string(),
+                                          t.scene_id, t.im_id, t.obj_id);
+    if (!std::filesystem::is_directory(dataset.sceneDir(t.scene_id))) {
+      throw InputError(
+          fmt::format("{}: the scene is not in dataset {}", where, dataset.root().string()));
+    }
+    if (!gt.count(t.scene_id)) gt[t.scene_id] = dataset.sceneGroundTruth(t.scene_id);
+    const auto image = gt[t.scene_id].find(t.im_id);
+    if (image == gt[t.scene_id].end()) {
+      throw InputError(fmt::format("{}: the image has no entry in scene_gt.json", where));
+    }
+    const bool in_gt = std::any_of(image->second.begin(), image->second.end(),
+                                   [&](const BopGtInstance& g) { return g.obj_id == t.obj_id; });
+    if (in_gt != (t.inst_count > 0)) {
+      throw InputError(fmt::format("{}: inst_count is {} but scene_gt.json {} the object there",
+                                   where, t.inst_count, in_gt ? "has" : "does not have"));
+    }
+    targets.push_back(t);
+  }
+  std::sort(targets.begin(), targets.end());
+  return targets;
 }
 
 DatasetEvaluator::DatasetEvaluator(const BopDataset& dataset)
@@ -49,6 +89,15 @@ const ObjectMetrics& DatasetEvaluator::object(int obj_id) {
       .emplace(obj_id, ObjectMetrics(std::move(points),
                                      info == info_.end() ? BopObjectInfo{} : info->second))
       .first->second;
+}
+
+TargetResult DatasetEvaluator::absentTarget(const Target& target, const BopResult* row) {
+  TargetResult result;
+  result.target = target;
+  result.score = row ? row->score : 0;
+  result.errors.found = row != nullptr;  // a pose of an object that is not there: infinite errors
+  result.errors.diameter_mm = object(target.obj_id).diameterMm();
+  return result;
 }
 
 const std::vector<BopGtInstance>& DatasetEvaluator::groundTruth(int scene_id, int im_id) {
@@ -98,14 +147,18 @@ ResultsEvaluation DatasetEvaluator::evaluate(const std::vector<Target>& targets,
       instances.push_back({gt[i].R, gt[i].t_mm});
       gt_index.push_back(static_cast<int>(i));
     }
+    TargetResult result;
+    result.target = t;
+    const auto row = best.find(t);
+    if (t.inst_count == 0) {
+      out.targets.push_back(absentTarget(t, row == best.end() ? nullptr : row->second));
+      continue;
+    }
     if (instances.empty()) {
       throw InputError(
           fmt::format("target scene {} image {} object {} has no ground-truth instance", t.scene_id,
                       t.im_id, t.obj_id));
     }
-    TargetResult result;
-    result.target = t;
-    const auto row = best.find(t);
     if (row != best.end()) {
       const RigidPose estimate{row->second->R, row->second->t_mm};
       result.score = row->second->score;

@@ -37,8 +37,9 @@ class RealProbabilitySource : public ProbabilitySource {
   const BopDataset& dataset_;
 };
 
-/// The segmentation simulator on the frame's visible ground-truth masks, for every object with
-/// ground truth in the frame; with `prefer_real`, the real map wherever the dataset has one.
+/// The segmentation simulator on the frame's visible ground-truth masks, for every object of the
+/// dataset (one without ground truth in the frame gets the simulator's absent-object map); with
+/// `prefer_real`, the real map wherever the dataset has one.
 class SimulatedProbabilitySource : public ProbabilitySource {
  public:
   SimulatedProbabilitySource(std::string spec, const BopDataset& dataset,
@@ -54,8 +55,8 @@ class SimulatedProbabilitySource : public ProbabilitySource {
 
   bool available(int scene_id, int im_id, int obj_id) const override {
     if (prefer_real_ && hasRealMap(dataset_, scene_id, im_id, obj_id)) return true;
-    const SegmentationScene& scene = frame(scene_id, im_id);
-    return std::find(scene.obj_ids.begin(), scene.obj_ids.end(), obj_id) != scene.obj_ids.end();
+    std::error_code ec;
+    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
   }
 
   cv::Mat load(int scene_id, int im_id, int obj_id) const override {

@@ -7,8 +7,10 @@
 #include <cmath>
 #include <limits>
 #include <opencv2/imgproc.hpp>
+#include <set>
 
 #include "stocs/util/error.h"
+#include "stocs/util/random.h"
 #include "stocs/util/range_check.h"
 
 namespace stocs {
@@ -23,6 +25,9 @@ const std::vector<std::pair<std::string, SegmentationNoiseParams>>& presets() {
     clean.confidence = 0.95f;
     clean.bleed_px = 1.0f;
     clean.noise = 0.02f;
+    clean.confusion_level = 0.45f;
+    clean.absent_blobs = 2;
+    clean.absent_blob_level = 0.35f;
 
     SegmentationNoiseParams mild = clean;
     mild.confidence = 0.9f;
@@ -31,6 +36,9 @@ const std::vector<std::pair<std::string, SegmentationNoiseParams>>& presets() {
     mild.neighbour_fraction = 0.05f;
     mild.lookalike_fraction = 0.01f;
     mild.noise = 0.05f;
+    mild.confusion_level = 0.55f;
+    mild.absent_blobs = 3;
+    mild.absent_blob_level = 0.4f;
 
     SegmentationNoiseParams noisy = mild;
     noisy.confidence = 0.8f;
@@ -39,6 +47,9 @@ const std::vector<std::pair<std::string, SegmentationNoiseParams>>& presets() {
     noisy.neighbour_fraction = 0.12f;
     noisy.lookalike_fraction = 0.03f;
     noisy.noise = 0.08f;
+    noisy.confusion_level = 0.6f;
+    noisy.absent_blobs = 4;
+    noisy.absent_blob_level = 0.45f;
 
     SegmentationNoiseParams very_noisy = noisy;
     very_noisy.confidence = 0.7f;
@@ -47,6 +58,9 @@ const std::vector<std::pair<std::string, SegmentationNoiseParams>>& presets() {
     very_noisy.neighbour_fraction = 0.25f;
     very_noisy.lookalike_fraction = 0.06f;
     very_noisy.noise = 0.12f;
+    very_noisy.confusion_level = 0.65f;
+    very_noisy.absent_blobs = 5;
+    very_noisy.absent_blob_level = 0.5f;
     return std::vector<std::pair<std::string, SegmentationNoiseParams>>{
         {"clean", clean}, {"mild", mild}, {"noisy", noisy}, {"very-noisy", very_noisy}};
   }();
@@ -246,6 +260,73 @@ cv::Mat lookalikeFiring(const SegmentationScene& scene, const cv::Mat& target,
                      upperQuantile(layout.lookalike_field, everywhere, params.lookalike_fraction)));
 }
 
+/// The map of an object among the scene's instances, before the noise: found where it is
+/// visible, with false positives on neighbours and look-alikes.
+cv::Mat presentObject(const SegmentationScene& scene, const SceneMasks& masks,
+                      const RandomLayout& layout, const SegmentationNoiseParams& params) {
+  const cv::Mat found = foundObject(masks.target, layout, params);
+  const cv::Mat false_positive = neighbourFiring(scene, masks, layout, params);
+  const cv::Mat lookalike = lookalikeFiring(scene, masks.target, layout, params);
+  return cv::max(found, params.false_positive_level * cv::max(false_positive, lookalike));
+}
+
+/// The labels of the instances with at least one visible pixel, in increasing order.
+std::vector<int> visibleLabels(const cv::Mat& labels) {
+  std::set<int> seen;
+  for (int v = 0; v < labels.rows; ++v) {
+    const int* l = labels.ptr<int>(v);
+    for (int u = 0; u < labels.cols; ++u) {
+      if (l[u] > 0) seen.insert(l[u]);
+    }
+  }
+  return {seen.begin(), seen.end()};
+}
+
+/// Class confusion: one visible instance's region found as the right class would be (bleeding,
+/// missed regions), at a level below it; nothing when no instance is visible.
+cv::Mat confusedObject(const cv::Mat& labels, const RandomLayout& layout,
+                       const SegmentationNoiseParams& params, Rng& rng) {
+  const std::vector<int> visible = visibleLabels(labels);
+  const float level = std::min(1.0f, params.confusion_level * (0.75f + 0.5f * uniform01(rng)));
+  if (visible.empty()) return cv::Mat::zeros(labels.size(), CV_32F);
+  const int label = visible[uniformIndex(rng, static_cast<uint32_t>(visible.size()))];
+  return foundObject(labels == label, layout, params) * level;
+}
+
+/// Up to `absent_blobs` Gaussian blobs of moderate probability anywhere in the image, each about
+/// half a `blob_px` across.
+cv::Mat noiseBlobs(cv::Size size, const SegmentationNoiseParams& params, Rng& rng) {
+  cv::Mat blobs = cv::Mat::zeros(size, CV_32F);
+  const int count =
+      params.absent_blobs > 0 ? 1 + static_cast<int>(uniformIndex(rng, params.absent_blobs)) : 0;
+  for (int k = 0; k < count; ++k) {
+    const float cu = uniform01(rng) * size.width, cv = uniform01(rng) * size.height;
+    const float sigma = params.blob_px * (0.2f + 0.2f * uniform01(rng));
+    const float peak = std::min(1.0f, params.absent_blob_level * (0.6f + 0.8f * uniform01(rng)));
+    const int reach = static_cast<int>(std::ceil(3 * sigma));
+    for (int v = std::max(0, static_cast<int>(cv) - reach);
+         v <= std::min(size.height - 1, static_cast<int>(cv) + reach); ++v) {
+      float* b = blobs.ptr<float>(v);
+      for (int u = std::max(0, static_cast<int>(cu) - reach);
+           u <= std::min(size.width - 1, static_cast<int>(cu) + reach); ++u) {
+        const float d2 = (u - cu) * (u - cu) + (v - cv) * (v - cv);
+        b[u] = std::max(b[u], peak * std::exp(-d2 / (2 * sigma * sigma)));
+      }
+    }
+  }
+  return blobs;
+}
+
+/// The map of an object that is not in the scene: a confusion or noise blobs (drawn from its own
+/// stream of `seed`, so present objects' maps stay as they were), plus the preset's noise.
+cv::Mat absentObject(const SegmentationScene& scene, const RandomLayout& layout,
+                     const SegmentationNoiseParams& params, uint64_t seed) {
+  Rng rng(streamSeed(seed, 0xab5e47));
+  const bool confusion = uniform01(rng) < params.absent_confusion_share;
+  return confusion ? confusedObject(scene.labels, layout, params, rng)
+                   : noiseBlobs(scene.labels.size(), params, rng);
+}
+
 }  // namespace
 
 void SegmentationNoiseParams::validate() const {
@@ -262,6 +343,10 @@ void SegmentationNoiseParams::validate() const {
   check("false_positive_level", false_positive_level, 0, 1);
   check("blob_px", blob_px, 1, 1000);
   check("noise", noise, 0, 1);
+  check("absent_confusion_share", absent_confusion_share, 0, 1);
+  check("confusion_level", confusion_level, 0, 1);
+  check("absent_blobs", absent_blobs, 0, 100);
+  check("absent_blob_level", absent_blob_level, 0, 1);
 }
 
 std::vector<std::string> segmentationPresetNames() {
@@ -284,11 +369,10 @@ cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
   checkScene(scene);
   const SceneMasks masks = sceneMasks(scene, target_obj_id);
   const RandomLayout layout = drawLayout(scene.labels.size(), params, seed);
-  const cv::Mat found = foundObject(masks.target, layout, params);
-  const cv::Mat false_positive = neighbourFiring(scene, masks, layout, params);
-  const cv::Mat lookalike = lookalikeFiring(scene, masks.target, layout, params);
-  cv::Mat probability =
-      cv::max(found, params.false_positive_level * cv::max(false_positive, lookalike));
+  const bool absent =
+      std::find(scene.obj_ids.begin(), scene.obj_ids.end(), target_obj_id) == scene.obj_ids.end();
+  cv::Mat probability = absent ? absentObject(scene, layout, params, seed)
+                               : presentObject(scene, masks, layout, params);
   probability += params.noise * layout.noise_field;
   return cv::min(cv::max(probability, 0.0f), 1.0f);
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_targets.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/sim/bop_writer.h"
 #include "stocs/sim/object_catalogue.h"
@@ -170,8 +172,8 @@ class SceneWriter {
         progress_(progress) {}
 
   /// Arranges scene `scene` from its own random stream, writes its images and then its
-  /// scene_camera, scene_gt and scene_gt_info files.
-  void writeScene(int scene) const {
+  /// scene_camera, scene_gt and scene_gt_info files; returns the scene's targets.
+  std::vector<BopTarget> writeScene(int scene) const {
     Rng rng(streamSeed(params_.seed, static_cast<uint64_t>(scene)));
     const std::vector<PlacedObject> objects = arrangeObjects(models_, params_.layout, rng);
     const std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
@@ -190,6 +192,7 @@ class SceneWriter {
     writeSceneCameras(dir / "scene_camera.json", records.cameras);
     writeSceneGroundTruth(dir / "scene_gt.json", records.gt);
     writeSceneGtInfo(dir / "scene_gt_info.json", records.gt_info);
+    return records.targets;
   }
 
  private:
@@ -198,6 +201,7 @@ class SceneWriter {
     std::map<int, BopFrameCamera> cameras;
     std::map<int, std::vector<BopGtInstance>> gt;
     std::map<int, std::vector<BopGtInfo>> gt_info;
+    std::vector<BopTarget> targets;
   };
 
   /// Renders image `im` of a scene from `camera_pose`, writes its images and records its camera
@@ -212,18 +216,55 @@ class SceneWriter {
     const std::set<int> present =
         writeInstances(dataset_.sceneDir(scene), im, frame, objects, camera_pose, records);
     const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};
-    for (int obj : present) {
+    const std::vector<BopTarget> targets =
+        imageTargets(scene, im, present, records.gt[im], image_seed);
+    for (const BopTarget& t : targets) {
       const cv::Mat probability =
-          simulateSegmentation(seen, obj, segmentation_, streamSeed(image_seed, obj + 2));
+          simulateSegmentation(seen, t.obj_id, segmentation_, streamSeed(image_seed, t.obj_id + 2));
       cv::Mat prob16;
       probability.convertTo(prob16, CV_16UC1, 10000.0);
-      writeImage(dataset_.probabilityPath(scene, im, obj), prob16);
+      writeImage(dataset_.probabilityPath(scene, im, t.obj_id), prob16);
     }
+    records.targets.insert(records.targets.end(), targets.begin(), targets.end());
     cv::Mat depth16;
     frame.depth.convertTo(depth16, CV_16UC1, 1000.0 / params_.depth_scale);
     writeImage(dataset_.depthPath(scene, im), depth16);
     writeImage(dataset_.rgbPath(scene, im), frame.rgb);
     records.cameras[im] = camera_;
+  }
+
+  /// The image's targets by object id: each object present with its instance count, and the
+  /// absent ones.
+  std::vector<BopTarget> imageTargets(int scene, int im, const std::set<int>& present,
+                                      const std::vector<BopGtInstance>& gt,
+                                      uint64_t image_seed) const {
+    std::vector<BopTarget> targets;
+    for (int obj : present) {
+      const auto count = std::count_if(gt.begin(), gt.end(),
+                                       [obj](const BopGtInstance& g) { return g.obj_id == obj; });
+      targets.push_back({scene, im, obj, static_cast<int>(count)});
+    }
+    for (int obj : absentObjects(present, image_seed)) targets.push_back({scene, im, obj, 0});
+    std::sort(targets.begin(), targets.end(),
+              [](const BopTarget& a, const BopTarget& b) { return a.obj_id < b.obj_id; });
+    return targets;
+  }
+
+  /// Up to `absent_per_image` of the dataset's objects that are not in the image, drawn from a
+  /// stream of their own (the scene's other draws stay as they were), in increasing id order.
+  std::set<int> absentObjects(const std::set<int>& present, uint64_t image_seed) const {
+    std::vector<int> spare;
+    for (const auto& [id, mesh] : models_) {
+      if (!present.count(id)) spare.push_back(id);
+    }
+    Rng rng(streamSeed(image_seed, 0xab5e47));
+    std::set<int> absent;
+    while (static_cast<int>(absent.size()) < params_.absent_per_image && !spare.empty()) {
+      const size_t k = uniformIndex(rng, static_cast<uint32_t>(spare.size()));
+      absent.insert(spare[k]);
+      spare.erase(spare.begin() + static_cast<long>(k));
+    }
+    return absent;
   }
 
   /// Writes the visible mask of every dataset object in the frame and records its pose and
@@ -266,6 +307,9 @@ void SyntheticDatasetParams::validate() const {
                     "scenes, {} images)",
                     scenes, images_per_scene));
   }
+  if (absent_per_image < 0) {
+    throw InputError(fmt::format("synth: --absent {} is negative", absent_per_image));
+  }
   if (layout.objects < 1) {
     throw InputError(
         fmt::format("synth: needs at least one object per scene (got {})", layout.objects));
@@ -296,7 +340,11 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
   writeModelsFolder(root / "models", model_files);
   const BopDataset dataset(root);
   const SceneWriter writer(dataset, params, loadModels(dataset, root), progress);
-  for (int scene = 0; scene < params.scenes; ++scene) writer.writeScene(scene);
+  std::vector<BopTarget> targets;
+  for (int scene = 0; scene < params.scenes; ++scene) {
+    for (const BopTarget& t : writer.writeScene(scene)) targets.push_back(t);
+  }
+  writeBopTargets(root / "test_targets_bop19.json", targets);
 }
 
 }  // namespace stocs

@@ -9,6 +9,7 @@
 #include <optional>
 #include <thread>
 
+#include "confidence_report.h"
 #include "eval_report.h"
 #include "line_plot.h"
 #include "stocs/eval/accuracy_curve.h"
@@ -20,9 +21,10 @@ using Scope = std::optional<size_t>;  ///< one input, or every input pooled
 
 /// The targets and timings of the runs of one method at one setting, over a scope.
 struct Pool {
-  std::vector<TargetErrors> errors;
-  std::vector<double> seconds;      ///< where known
-  std::vector<double> cpu_seconds;  ///< where known
+  std::vector<TargetErrors> errors;  ///< of the targets whose object is present
+  std::vector<ScoredTarget> scored;  ///< every target, for the confidence metrics
+  std::vector<double> seconds;       ///< where known
+  std::vector<double> cpu_seconds;   ///< where known
   double peak_mb = 0;
   int failed_runs = 0;
 };
@@ -34,8 +36,10 @@ Pool pool(const BenchData& d, const std::string& method, Sweep sweep, double val
         (scope && r.input != *scope)) {
       continue;
     }
+    const std::vector<ScoredTarget> scored = scoredTargets(r.targets);
+    p.scored.insert(p.scored.end(), scored.begin(), scored.end());
     for (size_t i = 0; i < r.targets.size(); ++i) {
-      p.errors.push_back(r.targets[i].errors);
+      if (!r.targets[i].absent()) p.errors.push_back(r.targets[i].errors);
       if (!std::isnan(r.seconds[i])) p.seconds.push_back(r.seconds[i]);
       if (!std::isnan(r.cpu_seconds[i])) p.cpu_seconds.push_back(r.cpu_seconds[i]);
     }
@@ -87,6 +91,7 @@ ReportTable mainTable(const BenchData& d) {
                                   {"failed runs", "failed_runs"}}) {
     header.push_back(c);
   }
+  for (const Cell& c : confidenceHeader()) header.push_back(c);
   ReportTable table(header);
   for (const std::string& method : d.methods) {
     for (Scope scope : scopes(d)) {
@@ -100,6 +105,9 @@ ReportTable mainTable(const BenchData& d) {
       row.push_back(numberCell(quantile(p.cpu_seconds, 0.9), 3));
       row.push_back(numberCell(p.peak_mb, 0));
       row.push_back(textCell(std::to_string(p.failed_runs)));
+      for (const Cell& c : confidenceCells(confidenceMetrics(p.scored, d.min_confidence))) {
+        row.push_back(c);
+      }
       table.add(row);
     }
   }
@@ -176,6 +184,16 @@ LinePlot accuracyPlot(const BenchData& d, Scope scope) {
     if (!adds.empty()) plot.series.push_back(s);
   }
   return plot;
+}
+
+/// Each method's reliability diagram (share correct against mean score per score bin).
+LinePlot scoreReliabilityPlot(const BenchData& d, Scope scope) {
+  std::vector<std::pair<std::string, ConfidenceMetrics>> series;
+  for (const std::string& method : d.methods) {
+    series.emplace_back(method, confidenceMetrics(pool(d, method, Sweep::kNone, 0, scope).scored,
+                                                  d.min_confidence));
+  }
+  return reliabilityPlot("Score reliability, " + scopeName(d, scope), series);
 }
 
 LinePlot thresholdPlot(const BenchData& d, Scope scope) {
@@ -343,6 +361,7 @@ class BenchReportWriter {
   void write() const {
     std::string md = methodsSection();
     md += "\n## ADD-S accuracy-threshold curves\n" + figures("accuracy_threshold", accuracyPlot);
+    md += "\n## Score reliability\n" + figures("reliability", scoreReliabilityPlot);
     md += sweepSections() + equalAccuracySection() + notesSection();
     writeTextFile(out_ / "results.md", md);
   }
@@ -354,8 +373,8 @@ class BenchReportWriter {
     const ReportTable main_table = mainTable(d_);
     std::string md =
         fmt::format("# stocs bench\n\n```\n{}\n```\n\nMachine: {}.\n\n", d_.command, machine());
-    md +=
-        "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() + timeLegend();
+    md += "## Methods x datasets\n\n" + main_table.markdown() + "\n" + metricLegend() +
+          timeLegend() + "\n" + confidenceLegend(d_.min_confidence);
     writeTextFile(out_ / "summary.csv", main_table.csv());
     writeTextFile(out_ / "targets.csv",
                   targetsCsv({"method", "dataset", "source"}, mainTargets(d_)));

@@ -56,6 +56,7 @@ struct BenchData {
   std::string command;             ///< the command line, for the report
   bool warm = true;                ///< every run began with an untimed estimate (--warm-up)
   int repeats = 1;                 ///< every image processed this many times (--repeats)
+  double min_confidence = 0.5;     ///< score threshold of the confidence columns
 };
 
 /// Writes into `out`: results.md, summary.csv, targets.csv, threshold_sweep.csv, budget_sweep.csv,

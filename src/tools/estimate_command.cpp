@@ -13,6 +13,7 @@
 #include "commands.h"
 #include "object_runs.h"
 #include "stocs/estimation/frame.h"
+#include "stocs/eval/dataset_evaluation.h"
 #include "stocs/eval/metric_summary.h"
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/io/bop_dataset.h"
@@ -34,6 +35,7 @@ struct EstimateOptions {
   std::string boundaries = "auto";
   std::string method = "stocs";
   std::string prob = "real";
+  std::string targets;
   bool warm_up = false;
   int repeats = 1;
   MethodOptions method_options;
@@ -92,12 +94,18 @@ class EstimateRun {
         warm_up_(o.warm_up) {}
 
   int run() {
-    for (int scene : scenes()) {
-      const std::map<int, BopFrameCamera> cameras = dataset_.sceneCameras(scene);
-      for (const auto& [im, instances] : dataset_.sceneGroundTruth(scene)) {
-        const std::optional<ImageTargets> image = targets(scene, im, instances, cameras);
-        if (image) report(*image, estimateImage(*image));
+    int loaded_scene = -1;
+    std::map<int, BopFrameCamera> cameras;
+    std::map<int, std::vector<BopGtInstance>> gt;
+    for (const auto& [image, objects] : selection()) {
+      const auto [scene, im] = image;
+      if (scene != loaded_scene) {
+        cameras = dataset_.sceneCameras(scene);
+        gt = dataset_.sceneGroundTruth(scene);
+        loaded_scene = scene;
       }
+      const ImageTargets targets = imageTargets(scene, im, objects, gt[im], cameras);
+      report(targets, estimateImage(targets));
     }
     if (targets_ == 0) {
       throw InputError(fmt::format(
@@ -112,35 +120,41 @@ class EstimateRun {
   }
 
  private:
-  std::vector<int> scenes() const {
-    const std::vector<int> scenes = o_.scenes.empty() ? dataset_.sceneIds() : o_.scenes;
-    for (int s : scenes) {
-      if (!std::filesystem::is_directory(dataset_.sceneDir(s))) {
-        throw InputError(fmt::format("dataset {}: scene {} does not exist", o_.dataset, s));
+  using ImageKey = std::pair<int, int>;  ///< scene, image
+
+  /// The objects to estimate in each image: the targets file's (each must have a map), else every
+  /// selected object of scene_gt.json that has a map.
+  std::map<ImageKey, std::set<int>> selection() const {
+    std::map<ImageKey, std::set<int>> images;
+    if (!o_.targets.empty()) {
+      for (const Target& t : targetsFromFile(dataset_, o_.targets, o_.scenes, o_.objects)) {
+        if (!probabilities_->available(t.scene_id, t.im_id, t.obj_id)) {
+          throw InputError(fmt::format(
+              "{}: target scene {} image {} object {} has no probability map from source '{}' "
+              "({}); --prob sim:PRESET simulates one",
+              o_.targets, t.scene_id, t.im_id, t.obj_id, o_.prob,
+              dataset_.probabilityPath(t.scene_id, t.im_id, t.obj_id).string()));
+        }
+        images[{t.scene_id, t.im_id}].insert(t.obj_id);
       }
+      return images;
     }
-    return scenes;
+    for (const Target& t : listTargets(dataset_, o_.scenes, o_.objects, probabilities_.get())) {
+      images[{t.scene_id, t.im_id}].insert(t.obj_id);
+    }
+    return images;
   }
 
-  /// The objects of the image's ground truth that are selected and have a map; nothing when none.
-  std::optional<ImageTargets> targets(int scene, int im,
-                                      const std::vector<BopGtInstance>& instances,
-                                      const std::map<int, BopFrameCamera>& cameras) const {
-    ImageTargets image{scene, im, &instances, {}, {}};
-    for (const BopGtInstance& g : instances) {
-      if ((o_.objects.empty() || std::count(o_.objects.begin(), o_.objects.end(), g.obj_id)) &&
-          probabilities_->available(scene, im, g.obj_id)) {
-        image.objects.insert(g.obj_id);
-      }
-    }
-    if (image.objects.empty()) return std::nullopt;
+  /// The image's objects with its ground truth and camera.
+  ImageTargets imageTargets(int scene, int im, const std::set<int>& objects,
+                            const std::vector<BopGtInstance>& instances,
+                            const std::map<int, BopFrameCamera>& cameras) const {
     const auto cam = cameras.find(im);
     if (cam == cameras.end()) {
       throw InputError(fmt::format("{}: no entry for image {}",
                                    (dataset_.sceneDir(scene) / "scene_camera.json").string(), im));
     }
-    image.camera = cam->second;
-    return image;
+    return {scene, im, &instances, objects, cam->second};
   }
 
   /// The object's model, prepared (or loaded from the cache) on its first use.
@@ -315,6 +329,10 @@ Command registerEstimate(CLI::App& app) {
   cmd->add_option("--method", o->method,
                   "Pose estimation method: " + fmt::format("{}", fmt::join(methodNames(), ", ")));
   cmd->add_option("--prob", o->prob, "Probability maps: " + probabilitySourceHelp());
+  cmd->add_option("--targets", o->targets,
+                  "BOP targets file (test_targets_bop19.json: scene_id, im_id, obj_id, "
+                  "inst_count): estimate exactly these (image, object) pairs, inst_count 0 "
+                  "(absent objects) included; default: every object of scene_gt.json with a map");
   cmd->add_option("--hard-threshold", o->method_options.hard_threshold,
                   "Probability threshold of the hard segment for methods that need one");
   cmd->add_flag("--warm-up", o->warm_up,

@@ -74,6 +74,10 @@ Command registerSynth(CLI::App& app) {
   cmd->add_option("--segmentation", p.segmentation_preset,
                   "Segmentation simulator preset of prob/: " +
                       fmt::format("{}", fmt::join(segmentationPresetNames(), ", ")));
+  cmd->add_option("--absent", p.absent_per_image,
+                  "Objects per image that are not in the scene but get a probability map (the "
+                  "simulator's confusion or noise) and a target with inst_count 0 in "
+                  "test_targets_bop19.json; fewer when the models run out");
   cmd->add_option("--seed", p.seed, "Random seed: the same seed writes the same files");
   cmd->add_flag("--quiet", o->quiet, "Print only the summary");
   return {cmd, [o] { return runSynth(*o); }};

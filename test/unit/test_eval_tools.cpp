@@ -296,6 +296,12 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   EXPECT_EQ(summary[0].at("method"), "stocs");
   EXPECT_EQ(summary[0].at("found"), "1");
   EXPECT_EQ(number(summary[0], "adds_success"), 1);  // a clean generated frame
+  // The confidence columns: one correct pose and no other target, so no AUC; its score decides
+  // whether it is kept at t = 0.5.
+  EXPECT_EQ(summary[0].at("absent_targets"), "0");
+  EXPECT_EQ(summary[0].at("score_roc_auc"), "");
+  EXPECT_EQ(number(summary[0], "correct_rejected_at_t"),
+            readBopResults(out / "bop" / "data_real" / "stocs.csv").at(0).score < 0.5 ? 1 : 0);
 
   // The pose the method wrote is known: the report's metrics of it are exact (to the CSV's 3
   // decimals), computed here from their definitions.
@@ -330,8 +336,9 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   EXPECT_EQ(bases[1].at("bases"), "30");
   expectFewestBasesAtEqualAccuracy(out, summary, bases);
 
-  for (const char* plot : {"accuracy_threshold_data_real.png", "threshold_sweep_data_real.png",
-                           "budget_sweep_data_real.png", "bases_sweep_data_real.png"}) {
+  for (const char* plot : {"accuracy_threshold_data_real.png", "reliability_data_real.png",
+                           "threshold_sweep_data_real.png", "budget_sweep_data_real.png",
+                           "bases_sweep_data_real.png"}) {
     EXPECT_TRUE(isPng(out / "plots" / plot)) << plot;
   }
   std::ifstream md(out / "results.md");

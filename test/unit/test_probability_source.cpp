@@ -3,6 +3,7 @@
 // masks.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/imgcodecs.hpp>
 
 #include "stocs/eval/segmentation_metrics.h"
@@ -59,7 +60,17 @@ TEST_F(ProbabilitySourceTest, SimUsesRealMapsWhereTheyExistAndSimulatesElsewhere
   EXPECT_FALSE(real->available(0, 0, removed));
   EXPECT_TRUE(sim->available(0, 0, removed));
   EXPECT_TRUE(simonly->available(0, 0, kept));
-  EXPECT_FALSE(sim->available(0, 0, 99));  // not in the frame's ground truth
+  EXPECT_FALSE(sim->available(0, 0, 99));  // no model in the dataset
+  // A model the frame's ground truth does not hold gets the simulator's absent-object map.
+  int absent = 0;
+  for (const auto& [id, info] : dataset_->modelsInfo()) {
+    if (std::none_of(gt_.begin(), gt_.end(),
+                     [&](const BopGtInstance& g) { return g.obj_id == id; }))
+      absent = id;
+  }
+  ASSERT_GT(absent, 0);
+  EXPECT_TRUE(simonly->available(0, 0, absent));
+  EXPECT_LT(cv::mean(simonly->load(0, 0, absent))[0], 0.2);
 
   const cv::Mat file = dataset_->loadProbability(0, 0, kept);
   EXPECT_EQ(cv::norm(sim->load(0, 0, kept), file, cv::NORM_INF), 0.0);

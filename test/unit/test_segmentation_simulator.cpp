@@ -2,6 +2,7 @@
 // generated scene, and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <opencv2/imgproc.hpp>
 
 #include "stocs/eval/segmentation_metrics.h"
@@ -56,6 +57,17 @@ class SegmentationSimulatorTest : public ::testing::Test {
       }
     }
     return c;
+  }
+
+  /// A catalogue object that the scene does not hold.
+  int absentObject() const {
+    for (const CatalogueObject& o : objectCatalogue()) {
+      if (std::find(scene_.obj_ids.begin(), scene_.obj_ids.end(), o.id) == scene_.obj_ids.end()) {
+        return o.id;
+      }
+    }
+    ADD_FAILURE() << "every catalogue object is in the scene";
+    return -1;
   }
 
   SegmentationScene scene_;
@@ -164,6 +176,79 @@ TEST_F(SegmentationSimulatorTest, LookalikesFollowColourWithRgbAndBackgroundWith
   const cv::Mat blind = (simulateSegmentation(without_rgb, obj, p, 4) > 0.5) & (m == 0);
   EXPECT_GT(cv::countNonZero(blind), 1000);
   EXPECT_EQ(cv::countNonZero(blind & (scene_.labels > 0)), 0);
+}
+
+TEST_F(SegmentationSimulatorTest, AnAbsentObjectsConfusionLiesOnAnotherObjectBelowTheRightClass) {
+  SegmentationNoiseParams p = segmentationPreset("mild");
+  p.absent_confusion_share = 1;
+  const int absent = absentObject();
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    const cv::Mat map = simulateSegmentation(scene_, absent, p, seed);
+    // The instance the map fires on: the one with the highest mean probability.
+    int confused = 0;
+    double confused_mean = 0;
+    for (size_t i = 0; i < scene_.obj_ids.size(); ++i) {
+      const cv::Mat region = scene_.labels == static_cast<int>(i) + 1;
+      if (cv::countNonZero(region) == 0) continue;
+      const double mean = cv::mean(map, region)[0];
+      if (mean > confused_mean) {
+        confused = static_cast<int>(i);
+        confused_mean = mean;
+      }
+    }
+    EXPECT_GT(confused_mean, 0.25) << "seed " << seed;
+    EXPECT_LT(confused_mean, 0.8 * p.confidence) << "seed " << seed;
+    // What fires lies on that instance or within the bleeding next to it.
+    cv::Mat near_instance;
+    cv::dilate(scene_.labels == confused + 1, near_instance, cv::Mat(), {-1, -1}, 6);
+    const cv::Mat fired = map > 0.25;
+    EXPECT_GT(cv::countNonZero(fired), 200) << "seed " << seed;
+    EXPECT_GE(cv::countNonZero(fired & near_instance), 0.98 * cv::countNonZero(fired))
+        << "seed " << seed;
+  }
+}
+
+TEST_F(SegmentationSimulatorTest, AnAbsentObjectsNoiseMapHasAFewSmallBlobsAndALowMean) {
+  const int absent = absentObject();
+  for (const std::string& name : segmentationPresetNames()) {
+    SegmentationNoiseParams p = segmentationPreset(name);
+    p.absent_confusion_share = 0;
+    for (uint64_t seed = 1; seed <= 4; ++seed) {
+      const cv::Mat map = simulateSegmentation(scene_, absent, p, seed);
+      EXPECT_LT(cv::mean(map)[0], 0.06) << name << " seed " << seed;
+      if (name != "clean") continue;  // the others' noise alone can pass the blob threshold
+      cv::Mat blobs, stats, centroids;
+      cv::Mat fired = map > 0.15;
+      const int n = cv::connectedComponentsWithStats(fired, blobs, stats, centroids) - 1;
+      EXPECT_GE(n, 1) << "seed " << seed;
+      EXPECT_LE(n, p.absent_blobs) << "seed " << seed;
+      for (int k = 1; k <= n; ++k) {
+        EXPECT_LT(stats.at<int>(k, cv::CC_STAT_AREA), p.blob_px * p.blob_px) << "seed " << seed;
+      }
+    }
+  }
+}
+
+TEST_F(SegmentationSimulatorTest, AnAbsentObjectsMapKindIsDrawnPerSeedAndRepeatable) {
+  const int absent = absentObject();
+  const SegmentationNoiseParams p = segmentationPreset("noisy");
+  SegmentationNoiseParams confusion = p, noise = p;
+  confusion.absent_confusion_share = 1;
+  noise.absent_confusion_share = 0;
+  int confusions = 0, noises = 0;
+  for (uint64_t seed = 1; seed <= 16; ++seed) {
+    const cv::Mat map = simulateSegmentation(scene_, absent, p, seed);
+    EXPECT_EQ(cv::norm(map, simulateSegmentation(scene_, absent, p, seed), cv::NORM_INF), 0.0);
+    const bool is_confusion =
+        cv::norm(map, simulateSegmentation(scene_, absent, confusion, seed), cv::NORM_INF) == 0;
+    const bool is_noise =
+        cv::norm(map, simulateSegmentation(scene_, absent, noise, seed), cv::NORM_INF) == 0;
+    EXPECT_NE(is_confusion, is_noise) << "seed " << seed;
+    confusions += is_confusion;
+    noises += is_noise;
+  }
+  EXPECT_GE(confusions, 3);
+  EXPECT_GE(noises, 3);
 }
 
 TEST_F(SegmentationSimulatorTest, BadInputsAreRefusedWithAClearMessage) {

@@ -2,12 +2,14 @@
 // the same files for the same seed, and refusal of bad requests.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "stocs/io/bop_dataset.h"
+#include "stocs/io/bop_targets.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/sim/bop_writer.h"
 #include "stocs/sim/depth_renderer.h"
@@ -190,6 +192,43 @@ TEST(SyntheticDataset, ModelsCanBeCopiedFromAFolder) {
   const std::vector<BopGtInstance> gt = BopDataset(copied).sceneGroundTruth(0).at(0);
   ASSERT_EQ(gt.size(), 4u);
   for (const BopGtInstance& g : gt) EXPECT_TRUE(g.obj_id == 1 || g.obj_id == 4);
+}
+
+TEST(SyntheticDataset, TargetsListEveryObjectAndAbsentOnesWithTheirMaps) {
+  const fs::path root = test::scratchDir("synth_targets");
+  SyntheticDatasetParams p = smallDataset(3);
+  p.absent_per_image = 5;  // more than the 2 spare catalogue objects: both taken
+  writeSyntheticDataset(root, p);
+  const BopDataset ds(root);
+  const std::vector<BopTarget> targets = readBopTargets(root / "test_targets_bop19.json");
+  const std::map<int, std::vector<BopGtInstance>> gt = ds.sceneGroundTruth(0);
+  ASSERT_EQ(targets.size(), 2u * objectCatalogue().size());
+  for (const BopTarget& t : targets) {
+    EXPECT_EQ(t.scene_id, 0);
+    const std::vector<BopGtInstance>& instances = gt.at(t.im_id);
+    const auto count = std::count_if(instances.begin(), instances.end(),
+                                     [&](const BopGtInstance& g) { return g.obj_id == t.obj_id; });
+    EXPECT_EQ(t.inst_count, count) << "image " << t.im_id << " object " << t.obj_id;
+    // Every target has a map; an absent object's is no confident object-sized region.
+    const cv::Mat probability = ds.loadProbability(0, t.im_id, t.obj_id);
+    if (t.inst_count == 0) {
+      EXPECT_LT(cv::countNonZero(probability > 0.7), 200) << "absent object " << t.obj_id;
+    }
+  }
+  const fs::path none = test::scratchDir("synth_no_absent");
+  p.absent_per_image = 0;
+  writeSyntheticDataset(none, p);
+  for (const BopTarget& t : readBopTargets(none / "test_targets_bop19.json")) {
+    EXPECT_GT(t.inst_count, 0);
+  }
+  // The absent objects' maps are added files only: every other file is the same.
+  std::map<std::string, std::string> with = files(root), without = files(none);
+  for (const auto& [name, content] : without) {
+    if (name == "test_targets_bop19.json") continue;
+    EXPECT_EQ(with.at(name), content) << name;
+  }
+  p.absent_per_image = -1;
+  EXPECT_THROW(writeSyntheticDataset(test::scratchDir("synth_bad_absent"), p), InputError);
 }
 
 TEST(SyntheticDataset, BadRequestsAreRefused) {

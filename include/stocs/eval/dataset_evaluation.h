@@ -6,29 +6,25 @@
 // estimate is compared with the nearest instance. Each target is scored on one estimate, its
 // highest-scoring row, so that no instance is claimed twice; further rows for the same target are
 // counted and ignored. A target without a row is a missing estimate (infinite errors, a failure).
+// An absent target (inst_count 0) has no instance: a row for it is a pose with infinite errors.
 
+#include <filesystem>
 #include <map>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "stocs/eval/object_metrics.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_results.h"
+#include "stocs/io/bop_targets.h"
 #include "stocs/sim/probability_source.h"
 
 namespace stocs {
 
-struct Target {
-  int scene_id = 0;
-  int im_id = 0;
-  int obj_id = 0;
-
-  bool operator<(const Target& o) const {
-    return std::tie(scene_id, im_id, obj_id) < std::tie(o.scene_id, o.im_id, o.obj_id);
-  }
-  bool operator==(const Target& o) const { return !(*this < o) && !(o < *this); }
-};
+/// A target: one object in one image (see bop_targets.h). Its inst_count is the number of
+/// ground-truth instances; 0 for an absent object, asked for by a targets file, whose right answer
+/// is no pose.
+using Target = BopTarget;
 
 /// Every object of scene_gt.json in every image of the given scenes (empty: all) that is among
 /// `objects` (empty: all) and, when `source` is given, has a probability map from it: the pairs
@@ -37,8 +33,19 @@ std::vector<Target> listTargets(const BopDataset& dataset, const std::vector<int
                                 const std::vector<int>& objects,
                                 const ProbabilitySource* source = nullptr);
 
+/// The targets of a BOP targets file (bop_targets.h) among the given scenes and objects (empty:
+/// all), sorted, with their inst_count checked against scene_gt.json: a present target needs a
+/// ground-truth instance and an absent one (inst_count 0) must have none. Throws InputError naming
+/// the file and the target.
+std::vector<Target> targetsFromFile(const BopDataset& dataset,
+                                    const std::filesystem::path& targets_file,
+                                    const std::vector<int>& scenes,
+                                    const std::vector<int>& objects);
+
 struct TargetResult {
   Target target;
+  /// The object is not in the image: a pose for it is a false positive.
+  bool absent() const { return target.inst_count == 0; }
   double score = 0;   ///< of the evaluated row
   int gt_index = -1;  ///< matched entry of scene_gt.json for the image; -1 when missing
   TargetErrors errors;
@@ -67,6 +74,8 @@ class DatasetEvaluator {
 
  private:
   const std::vector<BopGtInstance>& groundTruth(int scene_id, int im_id);
+  /// The result of an absent target with its row (nullptr: none, the right answer).
+  TargetResult absentTarget(const Target& target, const BopResult* row);
 
   const BopDataset& dataset_;
   std::map<int, BopObjectInfo> info_;

@@ -28,6 +28,16 @@ struct SegmentationNoiseParams {
   float blob_px = 14;                 ///< size of missed and false-positive regions, pixels
   float noise = 0;                    ///< amplitude of the smooth low-level noise
 
+  // Maps of absent objects (a target whose object is not among the scene's instances).
+  /// Share of absent targets whose map is a confusion with a visible object; the others get
+  /// background noise with a few blobs.
+  float absent_confusion_share = 0.5f;
+  /// Mean probability on the confused object's region relative to `confidence` (drawn per target
+  /// in 0.75..1.25 times this): a similar class fires there, below what the right class gets.
+  float confusion_level = 0.55f;
+  int absent_blobs = 3;            ///< most blobs of a noise map (1 to this many per target)
+  float absent_blob_level = 0.4f;  ///< mean peak probability of a blob (0.6..1.4 times per blob)
+
   /// Throws InputError naming the first value out of range.
   void validate() const;
 };
@@ -46,8 +56,12 @@ struct SegmentationScene {
 };
 
 /// The simulated probability (CV_32FC1 in [0, 1]) of object `target_obj_id` at every pixel: the
-/// same for the same seed. Throws InputError for a label image that is not CV_32SC1, labels without
-/// an object id, or an RGB image of another size or type.
+/// same for the same seed. For an object that is not among the scene's instances (an absent
+/// target), the map a network could emit for it: with probability `absent_confusion_share` another
+/// visible instance's region at a confusion level (class confusion), else the low-level noise with
+/// a few blobs of moderate probability; kind and strength drawn from the seed. Throws InputError
+/// for a label image that is not CV_32SC1, labels without an object id, or an RGB image of another
+/// size or type.
 cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
                              const SegmentationNoiseParams& params, uint64_t seed);
 

@@ -2,7 +2,9 @@
 // Generated BOP datasets (`stocs synth`): cluttered tabletop scenes of the project's objects (or
 // of any BOP models folder) with distractors, sensor-like depth, a shaded RGB image, visible masks,
 // visibility statistics and the segmentation simulator's probability maps in `prob/`, in the same
-// layout as the real datasets, so every tool runs on them unchanged.
+// layout as the real datasets, so every tool runs on them unchanged. `test_targets_bop19.json`
+// lists every (image, object) to estimate: the objects of scene_gt.json and absent ones (inst_count
+// 0).
 
 #include <cstdint>
 #include <filesystem>
@@ -24,6 +26,9 @@ struct SyntheticDatasetParams {
   DepthNoiseParams depth_noise;  ///< the sensor model at level 1
   float depth_noise_level = 1;   ///< 0: exact depth
   std::string segmentation_preset = "mild";
+  /// Objects per image that are not in the scene but get a probability map and a target with
+  /// inst_count 0 (fewer when the models run out): the right answer for them is no pose.
+  int absent_per_image = 2;
   double depth_scale = 0.1;  ///< mm per depth unit: 0.1 reaches 6.5 m
   uint64_t seed = 0;
 
