@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include <unistd.h>
+
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
@@ -31,8 +33,9 @@ std::filesystem::path datasetsDir() {
 std::filesystem::path scratchDir(const std::string& name) {
   // One folder per test: ctest runs the tests of a file as parallel processes.
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string test =
-      info ? std::string(info->test_suite_name()) + "." + info->name() : "no_test";
+  // Outside a test (SetUpTestSuite) every process of the suite runs the same code: one folder each.
+  const std::string test = info ? std::string(info->test_suite_name()) + "." + info->name()
+                                : "suite_setup_" + std::to_string(::getpid());
   const std::filesystem::path dir =
       std::filesystem::path(STOCS_TEST_BINARY_DIR) / "scratch" / test / name;
   std::filesystem::remove_all(dir);

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "stocs/util/error.h"
-#include "stocs/util/range_check.h"
 
 namespace stocs {
 
@@ -25,18 +24,31 @@ DepthNoiseParams DepthNoiseParams::atLevel(float level) const {
   return p;
 }
 
+const ParamSet<DepthNoiseParams>& DepthNoiseParams::schema() {
+  using P = DepthNoiseParams;
+  static const ParamSet<P> schema =
+      ParamSet<P>()
+          .add(&P::sigma_min, "sigma_min", "m", ParamRange::closed(0, 0.1),
+               "axial noise standard deviation at 0.4 m")
+          .add(&P::sigma_quadratic, "sigma_quadratic", "1/m", ParamRange::closed(0, 0.1),
+               "growth of the axial noise with the square of the depth beyond 0.4 m")
+          .add(&P::quantisation, "quantisation", "1/m", ParamRange::closed(0, 0.1),
+               "disparity quantisation: a depth step of this times depth squared")
+          .add(&P::edge_jump, "edge_jump", "m", ParamRange::closed(1e-4, 10),
+               "depth difference between neighbours that makes a depth edge")
+          .add(&P::edge_radius, "edge_radius", "px", ParamRange::closed(0, 10),
+               "pixels around a depth edge that may lose their depth")
+          .add(&P::edge_dropout, "edge_dropout", "", ParamRange::closed(0, 1),
+               "probability that a pixel at a depth edge has no depth")
+          .add(&P::grazing_angle_deg, "grazing_angle_deg", "deg", ParamRange::closed(0, 90),
+               "surfaces seen at a larger angle to their normal have no depth")
+          .add(&P::dropout, "dropout", "", ParamRange::closed(0, 1),
+               "probability that any pixel has no depth");
+  return schema;
+}
+
 void DepthNoiseParams::validate() const {
-  const auto check = [](const char* name, double value, double lo, double hi) {
-    checkRange("depth noise", name, value, lo, hi);
-  };
-  check("sigma_min", sigma_min, 0, 0.1);
-  check("sigma_quadratic", sigma_quadratic, 0, 0.1);
-  check("quantisation", quantisation, 0, 0.1);
-  check("edge_jump", edge_jump, 1e-4, 10);
-  check("edge_radius", edge_radius, 0, 10);
-  check("edge_dropout", edge_dropout, 0, 1);
-  check("grazing_angle_deg", grazing_angle_deg, 0, 90);
-  check("dropout", dropout, 0, 1);
+  schema().validate(*this, [](const ParamInfo& info) { return "depth noise: " + info.key; });
 }
 
 cv::Mat applyDepthNoise(const cv::Mat& depth, const cv::Mat& normals,

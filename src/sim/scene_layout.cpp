@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stocs/sim/shape_meshes.h"
-#include "stocs/util/range_check.h"
+#include "stocs/util/error.h"
 
 namespace stocs {
 namespace {
@@ -121,18 +121,51 @@ std::vector<Eigen::Matrix3f> restingOrientations(const MeshData& mesh) {
   return stable;
 }
 
+const ParamSet<SceneLayoutParams>& SceneLayoutParams::schema() {
+  using P = SceneLayoutParams;
+  static const ParamSet<P> schema =
+      ParamSet<P>()
+          .add(&P::objects, "objects", "", ParamRange::closed(1, 100),
+               "dataset objects per scene (fewer when the table is full)")
+          .flag("--objects")
+          .add(&P::distractors, "distractors", "", ParamRange::closed(0, 100),
+               "shapes without ground truth per scene")
+          .flag("--distractors")
+          .add(&P::table_radius, "table_radius", "m", ParamRange::closed(0, 5),
+               "object centres lie within this radius of the table centre")
+          .flag("--table-radius")
+          .add(&P::gap, "gap", "m", ParamRange::closed(0, 0.5),
+               "least distance between two objects' footprints")
+          .flag("--gap")
+          .add(&P::min_distance, "min_distance", "m", ParamRange::closed(0.1, 10),
+               "least camera distance to the table centre")
+          .flag("--min-distance")
+          .add(&P::max_distance, "max_distance", "m", ParamRange::closed(0.1, 10),
+               "greatest camera distance to the table centre")
+          .flag("--max-distance")
+          .add(&P::min_elevation_deg, "min_elevation_deg", "deg", ParamRange::closed(5, 85),
+               "least camera elevation above the table")
+          .flag("--min-elevation")
+          .add(&P::max_elevation_deg, "max_elevation_deg", "deg", ParamRange::closed(5, 85),
+               "greatest camera elevation above the table")
+          .flag("--max-elevation");
+  return schema;
+}
+
 void SceneLayoutParams::validate() const {
-  const auto check = [](const char* name, double value, double lo, double hi) {
-    checkRange("scene layout", name, value, lo, hi);
-  };
-  check("objects", objects, 0, 100);
-  check("distractors", distractors, 0, 100);
-  check("table_radius", table_radius, 0, 5);
-  check("gap", gap, 0, 0.5);
-  check("min_distance", min_distance, 0.1, 10);
-  check("max_distance", max_distance, min_distance, 10);
-  check("min_elevation_deg", min_elevation_deg, 5, 85);
-  check("max_elevation_deg", max_elevation_deg, min_elevation_deg, 85);
+  schema().validate(*this, [](const ParamInfo& info) { return "scene layout: " + info.key; });
+  checkOrder();
+}
+
+void SceneLayoutParams::checkOrder() const {
+  if (max_distance < min_distance) {
+    throw InputError(fmt::format("scene layout: max_distance {} m is below min_distance {} m",
+                                 max_distance, min_distance));
+  }
+  if (max_elevation_deg < min_elevation_deg) {
+    throw InputError(fmt::format("scene layout: max_elevation_deg {} is below min_elevation_deg {}",
+                                 max_elevation_deg, min_elevation_deg));
+  }
 }
 
 std::vector<PlacedObject> arrangeObjects(const std::vector<std::pair<int, MeshData>>& models,

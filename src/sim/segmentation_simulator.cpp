@@ -11,7 +11,6 @@
 
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
-#include "stocs/util/range_check.h"
 
 namespace stocs {
 namespace {
@@ -329,24 +328,43 @@ cv::Mat absentObject(const SegmentationScene& scene, const RandomLayout& layout,
 
 }  // namespace
 
+const ParamSet<SegmentationNoiseParams>& SegmentationNoiseParams::schema() {
+  using P = SegmentationNoiseParams;
+  const ParamRange share = ParamRange::closed(0, 1);
+  static const ParamSet<P> schema =
+      ParamSet<P>()
+          .add(&P::confidence, "confidence", "", share,
+               "probability on an object pixel that is found")
+          .add(&P::missed_fraction, "missed_fraction", "", share,
+               "mean share of the object's visible pixels that are missed")
+          .add(&P::missed_level, "missed_level", "", share, "probability left in a missed region")
+          .add(&P::bleed_px, "bleed_px", "px", ParamRange::closed(0, 100),
+               "spread of the map over the object's outline")
+          .add(&P::neighbour_fraction, "neighbour_fraction", "", share,
+               "mean share of each nearby other object that fires")
+          .add(&P::lookalike_fraction, "lookalike_fraction", "", share,
+               "share of the image where look-alike pixels may fire")
+          .add(&P::colour_tolerance, "colour_tolerance", "", ParamRange::closed(1, 442),
+               "RGB distance at which a pixel stops looking like the target")
+          .add(&P::false_positive_level, "false_positive_level", "", share,
+               "probability of a false-positive region")
+          .add(&P::blob_px, "blob_px", "px", ParamRange::closed(1, 1000),
+               "size of missed and false-positive regions")
+          .add(&P::noise, "noise", "", share, "amplitude of the smooth low-level noise")
+          .add(&P::absent_confusion_share, "absent_confusion_share", "", share,
+               "share of absent targets whose map is a confusion with a visible object")
+          .add(&P::confusion_level, "confusion_level", "", share,
+               "mean probability on a confused object's region, relative to confidence")
+          .add(&P::absent_blobs, "absent_blobs", "", ParamRange::closed(0, 100),
+               "most blobs of an absent object's noise map")
+          .add(&P::absent_blob_level, "absent_blob_level", "", share,
+               "mean peak probability of a blob of an absent object's noise map");
+  return schema;
+}
+
 void SegmentationNoiseParams::validate() const {
-  const auto check = [](const char* name, double value, double lo, double hi) {
-    checkRange("segmentation simulator", name, value, lo, hi);
-  };
-  check("confidence", confidence, 0, 1);
-  check("missed_fraction", missed_fraction, 0, 1);
-  check("missed_level", missed_level, 0, 1);
-  check("bleed_px", bleed_px, 0, 100);
-  check("neighbour_fraction", neighbour_fraction, 0, 1);
-  check("lookalike_fraction", lookalike_fraction, 0, 1);
-  check("colour_tolerance", colour_tolerance, 1, 442);
-  check("false_positive_level", false_positive_level, 0, 1);
-  check("blob_px", blob_px, 1, 1000);
-  check("noise", noise, 0, 1);
-  check("absent_confusion_share", absent_confusion_share, 0, 1);
-  check("confusion_level", confusion_level, 0, 1);
-  check("absent_blobs", absent_blobs, 0, 100);
-  check("absent_blob_level", absent_blob_level, 0, 1);
+  schema().validate(*this,
+                    [](const ParamInfo& info) { return "segmentation simulator: " + info.key; });
 }
 
 std::vector<std::string> segmentationPresetNames() {

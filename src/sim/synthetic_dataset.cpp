@@ -1,6 +1,7 @@
 #include "stocs/sim/synthetic_dataset.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <chrono>
@@ -300,32 +301,47 @@ class SceneWriter {
 
 }  // namespace
 
+const ParamSet<SyntheticDatasetParams>& SyntheticDatasetParams::schema() {
+  using P = SyntheticDatasetParams;
+  static const ParamSet<P> schema =
+      ParamSet<P>()
+          .add(&P::scenes, "scenes", "", ParamRange::closed(1, 100000),
+               "scenes (object arrangements)")
+          .flag("--scenes")
+          .add(&P::images_per_scene, "images_per_scene", "", ParamRange::closed(1, 100000),
+               "views of each scene")
+          .flag("--images")
+          .nest(&P::layout, "layout", SceneLayoutParams::schema())
+          .add(&P::depth_noise_level, "depth_noise_level", "", ParamRange::closed(0, 10),
+               "depth sensor noise level: 0 exact, 1 a Kinect-like sensor, higher is noisier")
+          .flag("--depth-noise")
+          .add(&P::segmentation_preset, "segmentation_preset", "", std::nullopt,
+               fmt::format("segmentation simulator preset of prob/: {}",
+                           fmt::join(segmentationPresetNames(), ", ")))
+          .flag("--segmentation")
+          .add(&P::absent_per_image, "absent_per_image", "", ParamRange::closed(0, 100),
+               "objects per image that are not in the scene but get a probability map (the "
+               "simulator's confusion or noise) and a target with inst_count 0 in "
+               "test_targets_bop19.json; fewer when the models run out")
+          .flag("--absent")
+          .add(&P::depth_scale, "depth_scale", "mm", ParamRange::aboveUpTo(0, 100),
+               "millimetres per unit of the written depth images")
+          .flag("--depth-scale")
+          .add(&P::seed, "seed", "", std::nullopt,
+               "random seed: the same seed writes the same files")
+          .flag("--seed");
+  return schema;
+}
+
 void SyntheticDatasetParams::validate() const {
-  if (scenes < 1 || images_per_scene < 1) {
-    throw InputError(
-        fmt::format("synth: needs at least one scene and one image per scene (got {} "
-                    "scenes, {} images)",
-                    scenes, images_per_scene));
-  }
-  if (absent_per_image < 0) {
-    throw InputError(fmt::format("synth: --absent {} is negative", absent_per_image));
-  }
-  if (layout.objects < 1) {
-    throw InputError(
-        fmt::format("synth: needs at least one object per scene (got {})", layout.objects));
-  }
+  schema().validate(*this, [](const ParamInfo& info) { return "synth: " + info.key; });
   if (!camera.valid()) {
     throw InputError(fmt::format(
         "synth: camera intrinsics are invalid (width {}, height {}, fx {}, fy {}: all must be "
         "positive)",
         camera.width, camera.height, camera.fx, camera.fy));
   }
-  if (!(depth_noise_level >= 0 && depth_noise_level <= 10)) {
-    throw InputError(
-        fmt::format("synth: depth noise level {} is outside [0, 10]", depth_noise_level));
-  }
-  if (!(depth_scale > 0)) throw InputError("synth: depth_scale must be positive");
-  layout.validate();
+  layout.checkOrder();
   depth_noise.validate();
   segmentationPreset(segmentation_preset);
 }

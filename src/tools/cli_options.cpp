@@ -11,28 +11,21 @@ ModelCache ModelOptions::cache() const {
   return ModelCache(no_cache ? std::filesystem::path() : std::filesystem::path(cache_dir));
 }
 
-void addPipelineOptions(CLI::App& cmd, PipelineParams& p) {
-  for (const auto& entry : PipelineParams::schema().entries()) {
-    const ParamInfo& info = entry.info;
-    const std::string help =
-        info.unit.empty() ? info.meaning : fmt::format("{} ({})", info.meaning, info.unit);
-    CLI::Option* option = std::visit(
-        [&](auto field) -> CLI::Option* {
-          using Field = decltype(field);
-          if constexpr (std::is_same_v<Field, ChoiceRef> ||
-                        std::is_same_v<Field, std::vector<std::string>*>) {
-            return nullptr;  // the core has no choice or list parameters
-          } else {
-            return cmd.add_option(info.cliFlag(), *field, help);
-          }
-        },
-        entry.field(p));
-    if (option) option->group(info.group);
-  }
-}
-
-void validatePipelineOptions(const PipelineParams& p) {
-  PipelineParams::schema().validate(p, [](const ParamInfo& info) { return info.cliFlag(); });
+void addParamOption(CLI::App& cmd, const ParamInfo& info, const ParamRef& field) {
+  const std::string help =
+      info.unit.empty() ? info.meaning : fmt::format("{} ({})", info.meaning, info.unit);
+  CLI::Option* option = std::visit(
+      [&](auto f) -> CLI::Option* {
+        using Field = decltype(f);
+        if constexpr (std::is_same_v<Field, ChoiceRef> ||
+                      std::is_same_v<Field, std::vector<std::string>*>) {
+          return nullptr;  // the core has no choice or list parameters
+        } else {
+          return cmd.add_option(info.cliFlag(), *f, help);
+        }
+      },
+      field);
+  if (option && !info.group.empty()) option->group(info.group);
 }
 
 void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,

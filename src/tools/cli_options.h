@@ -19,12 +19,32 @@ struct ModelOptions {
   ModelCache cache() const;
 };
 
-/// Adds an option for every estimation parameter (PipelineParams::schema()), writing into `params`.
-void addPipelineOptions(CLI::App& cmd, PipelineParams& params);
+/// Adds the option of one parameter (ParamInfo::cliFlag, its meaning and unit as help), writing
+/// into `field`; none for list and choice parameters.
+void addParamOption(CLI::App& cmd, const ParamInfo& info, const ParamRef& field);
+
+/// Adds an option for every parameter of `schema`, writing into `s`.
+template <class S>
+void addSchemaOptions(CLI::App& cmd, const ParamSet<S>& schema, S& s) {
+  for (const auto& entry : schema.entries()) addParamOption(cmd, entry.info, entry.field(s));
+}
 
 /// Throws InputError naming the option ("--bases 0 is outside [1, 1000000]") of the first
-/// estimation parameter out of range.
-void validatePipelineOptions(const PipelineParams& params);
+/// parameter of `schema` out of range in `s`.
+template <class S>
+void validateSchemaOptions(const ParamSet<S>& schema, const S& s) {
+  schema.validate(s, [](const ParamInfo& info) { return info.cliFlag(); });
+}
+
+/// Adds an option for every estimation parameter (PipelineParams::schema()), writing into `params`.
+inline void addPipelineOptions(CLI::App& cmd, PipelineParams& params) {
+  addSchemaOptions(cmd, PipelineParams::schema(), params);
+}
+
+/// Throws InputError naming the option of the first estimation parameter out of range.
+inline void validatePipelineOptions(const PipelineParams& params) {
+  validateSchemaOptions(PipelineParams::schema(), params);
+}
 
 /// Adds --split, --scenes and --objects: which images and objects of a dataset to use.
 void addSelectionOptions(CLI::App& cmd, std::string& split, std::vector<int>& scenes,

@@ -89,16 +89,14 @@ TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
       test::runCommand(kTool + " synth --out " + (root / "e").string() + " --segmentation x", out),
       2);
   EXPECT_NE(out.find("unknown segmentation preset 'x'"), std::string::npos) << out;
-  EXPECT_NE(
-      test::runCommand(kTool + " synth --out " + (root / "f").string() + " --distance 0.5", out),
-      0);
-  EXPECT_NE(out.find("--distance"), std::string::npos) << out;
   for (const auto& [args, message] : std::vector<std::pair<std::string, std::string>>{
-           {" --scenes 0", "at least one scene"},
-           {" --objects 0", "at least one object"},
+           {" --scenes 0", "--scenes 0 is outside [1, 100000]"},
+           {" --objects 0", "--objects 0 is outside [1, 100]"},
+           {" --absent -1", "--absent -1 is outside [0, 100]"},
            {" --width 0", "camera intrinsics are invalid (width 0"},
-           {" --depth-noise -1", "depth noise level -1"},
-           {" --distance 0.9,0.5", "max_distance"},
+           {" --depth-noise -1", "--depth-noise -1 is outside [0, 10]"},
+           {" --min-distance 0.9 --max-distance 0.5", "max_distance 0.5 m is below min_distance"},
+           {" --max-elevation 90", "--max-elevation 90 deg is outside [5, 85]"},
            {" --models " + (root / "none").string(), "not a folder"}}) {
     EXPECT_EQ(test::runCommand(kTool + " synth --out " + (root / "g").string() + args, out), 2)
         << args;

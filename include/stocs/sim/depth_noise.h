@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "stocs/geometry/camera.h"
+#include "stocs/util/param_set.h"
 
 namespace stocs {
 
@@ -29,6 +30,8 @@ struct DepthNoiseParams {
   /// These errors scaled by `level`: the noise and dropout probabilities multiplied (capped at 1),
   /// and at level 0 no error at all (no quantisation, no lost pixels).
   DepthNoiseParams atLevel(float level) const;
+  /// Key, range, unit and meaning of every field.
+  static const ParamSet<DepthNoiseParams>& schema();
   /// Throws InputError naming the first value out of range.
   void validate() const;
 };

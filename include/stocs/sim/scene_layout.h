@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "stocs/geometry/mesh.h"
+#include "stocs/util/param_set.h"
 #include "stocs/util/random.h"
 
 namespace stocs {
@@ -28,8 +29,12 @@ struct SceneLayoutParams {
   float min_distance = 0.55f, max_distance = 0.9f;       ///< camera to table centre, metres
   float min_elevation_deg = 30, max_elevation_deg = 75;  ///< camera angle above the table
 
-  /// Throws InputError naming the first value out of range.
+  /// Key, range, unit and meaning of every field.
+  static const ParamSet<SceneLayoutParams>& schema();
+  /// Throws InputError naming the first value out of range, or a range whose ends are reversed.
   void validate() const;
+  /// Throws InputError when a range's ends are reversed (the part of validate() no schema says).
+  void checkOrder() const;
 };
 
 struct PlacedObject {

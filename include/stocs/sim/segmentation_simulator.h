@@ -11,6 +11,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "stocs/util/param_set.h"
+
 namespace stocs {
 
 struct SegmentationNoiseParams {
@@ -38,6 +40,8 @@ struct SegmentationNoiseParams {
   int absent_blobs = 3;            ///< most blobs of a noise map (1 to this many per target)
   float absent_blob_level = 0.4f;  ///< mean peak probability of a blob (0.6..1.4 times per blob)
 
+  /// Key, range, unit and meaning of every field.
+  static const ParamSet<SegmentationNoiseParams>& schema();
   /// Throws InputError naming the first value out of range.
   void validate() const;
 };

@@ -32,6 +32,9 @@ struct SyntheticDatasetParams {
   double depth_scale = 0.1;  ///< mm per depth unit: 0.1 reaches 6.5 m
   uint64_t seed = 0;
 
+  /// Key, range, unit and meaning of every field but the camera and the depth noise model (the
+  /// options of `stocs synth`).
+  static const ParamSet<SyntheticDatasetParams>& schema();
   /// Throws InputError naming the first value out of range (and an unknown preset).
   void validate() const;
 };
