@@ -7,6 +7,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
+#include "coverage_report.h"
 #include "eval_report.h"
 #include "stocs/eval/dataset_evaluation.h"
 #include "stocs/io/bop_dataset.h"
@@ -26,6 +27,7 @@ struct EvalOptions {
   std::string markdown;
   std::string csv;
   std::string targets_csv;
+  std::vector<std::string> per_object;
 };
 
 int runEval(const EvalOptions& o) {
@@ -34,6 +36,10 @@ int runEval(const EvalOptions& o) {
         fmt::format("--dataset and --results come in pairs: got {} datasets and {} "
                     "results files",
                     o.datasets.size(), o.results.size()));
+  }
+  if (!o.per_object.empty() && o.per_object.size() != o.results.size()) {
+    throw InputError(fmt::format("--per-object and --results come in pairs: got {} and {}",
+                                 o.per_object.size(), o.results.size()));
   }
   std::vector<Cell> header = {textCell("results"), textCell("dataset"), textCell("object")};
   for (const Cell& c : metricHeader()) header.push_back(c);
@@ -71,6 +77,8 @@ int runEval(const EvalOptions& o) {
       add_row(o.results[i], name, std::to_string(obj), targets_of_obj);
     }
     add_row(o.results[i], name, "all", ev.targets);
+    if (!o.per_object.empty())
+      notes += coverageNote(o.results[i], o.per_object[i], ev.targets, dataset);
     if (ev.duplicates || ev.not_targets) {
       notes += fmt::format(
           "- {}: {} rows beyond a target's highest-scoring one and {} rows for objects that are "
@@ -109,6 +117,9 @@ Command registerEval(CLI::App& app) {
                   "--prob`); default: every object of scene_gt.json");
   cmd->add_option("--markdown", o->markdown, "Markdown report file (default: standard output)");
   cmd->add_option("--csv", o->csv, "Summary rows as CSV");
+  cmd->add_option("--per-object", o->per_object,
+                  "`stocs estimate --per-object` file of each --results: reports the share of true "
+                  "errors of correct poses inside the covariances' 50% and 90% ellipsoids");
   cmd->add_option("--targets-csv", o->targets_csv, "One CSV row per target with every error");
   return {cmd, [o] { return runEval(*o); }};
 }
