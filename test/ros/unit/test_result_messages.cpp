@@ -226,13 +226,16 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
           {"box", 2}, {"box", 3}, {"box", 4}, {"box", 5}, {"uncertainty", 1}, {"uncertainty", 2}}));
 }
 
-/// A covariance with distinct entries, symmetric positive definite: 6-vector (x, y, z, rx, ry, rz).
+/// A symmetric positive-definite covariance whose entries differ but for the symmetric pairs:
+/// 2^r 3^k + 2^k 3^r (x 1e-9), diagonally dominant.
 stocs::PoseCovariance distinctCovariance() {
   stocs::PoseCovariance c;
   for (int r = 0; r < 6; ++r) {
-    for (int k = 0; k < 6; ++k) c(r, k) = 1e-6 * (1 + r + k);
+    for (int k = 0; k < 6; ++k) {
+      c(r, k) = 1e-9 * (std::pow(2, r) * std::pow(3, k) + std::pow(2, k) * std::pow(3, r));
+    }
   }
-  c.diagonal() += Eigen::Matrix<double, 6, 1>::LinSpaced(6, 1e-4, 6e-4);
+  c.diagonal() += Eigen::Matrix<double, 6, 1>::LinSpaced(6, 1e-3, 6e-3);
   return c;
 }
 
