@@ -53,6 +53,7 @@ stocs_add_rostest_node(test_bad_inputs ${PROJECT_SOURCE_DIR}/test/ros/test_bad_i
 stocs_add_rostest_node(test_bad_config ${PROJECT_SOURCE_DIR}/test/ros/test_bad_config.cpp)
 stocs_add_rostest_node(test_scene_poses ${PROJECT_SOURCE_DIR}/test/ros/test_scene_poses.cpp)
 stocs_add_rostest_node(test_soak ${PROJECT_SOURCE_DIR}/test/ros/test_soak.cpp)
+stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test_rejected_objects.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
@@ -65,6 +66,8 @@ add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses $
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
 add_rostest(test/ros/soak.test ARGS data:=${STOCS_ROS_TEST_DATA}

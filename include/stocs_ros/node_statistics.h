@@ -6,6 +6,8 @@
 // (output.estimate_on_frames: false), or still in progress. Hence, per input,
 //   received = matched + dropped + queued,   matched = estimated + replaced + rejected + kept +
 //   in progress.
+// Per estimated frame or service call, the poses published and those rejected for a low confidence
+// (not published; see RejectedObject.msg).
 // Published as diagnostic_msgs/DiagnosticStatus key-value pairs and logged at shutdown.
 // Thread-safe: subscription callbacks, the worker and the service thread all count.
 
@@ -39,6 +41,8 @@ class NodeStatistics {
   void replaced();
   void estimated();
   void rejected(const std::string& kind);
+  /// A result's poses: `published` accepted ones, `rejected` ones below min_confidence.
+  void poses(size_t published, size_t rejected);
   void serviceCall(bool success);
   /// Time went back and the synchronizer started again (see stamp_synchronizer.h).
   void timeJumpedBack();
@@ -68,6 +72,7 @@ class NodeStatistics {
   uint64_t rejected_total_ = 0;
   uint64_t service_calls_ = 0, service_failures_ = 0;
   uint64_t time_jumps_ = 0;
+  uint64_t poses_published_ = 0, poses_rejected_ = 0;
   uint64_t reported_problems_ = 0;  // rejected + dropped at the previous status()
 };
 

@@ -2,10 +2,13 @@
 // Publishes a frame's result: TF from the cloud's frame to <frame_prefix><object> (and
 // <frame_prefix><object>_<k> for further instances, see instanceName), ~poses
 // (PoseArray), ~objects (ObjectPoseArray) and ~markers (MarkerArray), as the config's output
-// section selects. A result older than one already published (a service call on explicit, older
-// inputs) is not published: consumers see stamps that never go back, except when time itself went
-// back (a bag loop, a restarted driver): results of the new timeline are published from its start,
-// and those of earlier timelines no more. Called from one thread at a time (the estimation worker).
+// section selects, and ~pose/<object> (and ~pose/<object>_<k>; PoseWithCovarianceStamped), each
+// advertised with its first pose and published only while subscribed. Rejected poses (low
+// confidence) appear only in ~objects' `rejected`. A result older than one already published (a
+// service call on explicit, older inputs) is not published: consumers see stamps that never go
+// back, except when time itself went back (a bag loop, a restarted driver): results of the new
+// timeline are published from its start, and those of earlier timelines no more. Called from one
+// thread at a time (the estimation worker).
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -31,7 +34,9 @@ class OutputPublisher {
 
  private:
   void publishTransforms(const FrameResult& result, const EstimationSetup& setup);
+  void publishPerObject(const FrameResult& result, const EstimationSetup& setup);
 
+  ros::NodeHandle pnh_;
   ros::Publisher poses_;
   ros::Publisher objects_;
   ros::Publisher markers_;
@@ -40,6 +45,7 @@ class OutputPublisher {
   /// for one stamp, as happens when ~estimate runs again on a frame already estimated.
   std::map<std::string, ros::Time> tf_stamps_;
   std::set<MarkerKey> shown_markers_;
+  std::map<std::string, ros::Publisher> per_object_;  ///< by instanceName
   std::optional<ros::Time> newest_stamp_;
   uint64_t timeline_ = 0;
 };

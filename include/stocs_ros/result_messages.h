@@ -3,6 +3,7 @@
 // rviz markers.
 
 #include <geometry_msgs/PoseArray.h>
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <stocs_ros/ObjectPoseArray.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -18,32 +19,51 @@
 namespace stocs_ros {
 
 /// One pose of a found object: its best pose (instance 0) or a further distinct instance
-/// (estimation.stocs.instances > 1).
+/// (estimation.stocs.instances > 1), with its score, confidence, covariance and acceptance.
 struct FoundPose {
   const ObjectOutcome* outcome;
   size_t instance;
-  Eigen::Isometry3f pose;
-  float score;
+  stocs::InstancePose estimate;
 };
 
-/// Every pose of the result: objects in result order, each object's instances best first.
+/// Every accepted pose of the result: objects in result order, each object's instances best
+/// first. A found estimate without instances (a method that lists none) counts as one accepted
+/// instance.
 std::vector<FoundPose> foundPoses(const FrameResult& result);
+
+/// Every rejected pose of the result, in the same order.
+std::vector<FoundPose> rejectedPoses(const FrameResult& result);
+
+/// Why `rejected` was rejected (stocs::InstancePose::rejection), or "rejected" where it says not.
+std::string rejectionReason(const FoundPose& rejected);
 
 /// The name of an object's pose as TF child frame (after the prefix) and label: "<object>" for
 /// instance 0, "<object>_<k>" for instance k > 0 (as the scene publisher names gt_<object>_<k>).
 std::string instanceName(const std::string& object, size_t instance);
 
-/// The found poses, in the order of foundPoses.
+/// The accepted poses (in the order of foundPoses, each covariance publishableCovariance) and the
+/// rejected ones (rejectedPoses' order, with their reason).
 ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSetup& setup);
+
+/// The accepted pose `found` with its publishable covariance, as the per-object topic sends it.
+geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const FoundPose& found,
+                                                              const FrameResult& result,
+                                                              const EstimationSetup& setup);
 
 /// The found poses, in the same order as toObjectPoseArray.
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result);
 
 /// Per found pose, its body (bodyMarker: the config's mesh or else the model samples) in the
 /// object's colour, and a white text label "instanceName score" above the object
-/// (labelPositionAbove); namespace = object name, ids 2k (body) and 2k + 1 (label) for instance k.
+/// (labelPositionAbove); namespace = object name, ids 2k (body) and 2k + 1 (label) for instance k;
+/// and its uncertainty (uncertaintyMarker, namespace kUncertaintyNamespace, id
+/// kUncertaintyIdsPerObject x object index + k). Rejected poses get none.
 /// Markers in `shown` (those of the previous call) that are not shown now get DELETE markers;
 /// `shown` is updated.
+inline const char* const kUncertaintyNamespace = "uncertainty";
+/// Above the most instances per object (StocsParams::instances).
+constexpr int kUncertaintyIdsPerObject = 1000;
+
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
                                           std::set<MarkerKey>& shown);
 

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "stocs/estimation/instance_separation.h"
+#include "stocs/estimation/pose_covariance.h"
 
 namespace stocs {
 namespace {
@@ -127,7 +128,13 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
   std::vector<InstancePose> instances;
   for (const Hypothesis& h : taken) {
     const LcpDetail detail = c.scorer.detail(c.model, h.pose, h.region);
-    instances.push_back({h.pose, detail.score, detail, h.refined, h.region});
+    InstancePose& instance = instances.emplace_back();
+    instance.pose = h.pose;
+    instance.score = detail.score;
+    instance.lcp = detail;
+    instance.refined = h.refined;
+    instance.region = h.region;
+    instance.covariance = poseCovariance(c.model, c.icp, h.pose, h.region, &c.scorer);
   }
   return instances;
 }

@@ -69,8 +69,14 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
   return run.pose;
 }
 
-void IcpRefiner::iterate(const ObjectModel& model, IcpRun& run, int until, int region,
-                         const LcpScorer* near) const {
+Eigen::Vector3f sampleCentre(const ObjectModel& model) {
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+  for (const Eigen::Vector3f& q : model.points) centre += q;
+  return centre / static_cast<float>(std::max<size_t>(1, model.size()));
+}
+
+PointToPlaneSystem IcpRefiner::system(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                                      int region, const LcpScorer* near) const {
   const SoftSegment& segment = segment_;
   if (near && (&near->segment() != &segment || near->params().distance > params_.max_distance)) {
     near = nullptr;
@@ -82,41 +88,45 @@ void IcpRefiner::iterate(const ObjectModel& model, IcpRun& run, int until, int r
     const int s = near ? near->closest(p, region) : -1;
     return s >= 0 ? s : grid.closest(p);
   };
-  Eigen::Vector3f model_centre = Eigen::Vector3f::Zero();
-  for (const Eigen::Vector3f& q : model.points) model_centre += q;
-  model_centre /= static_cast<float>(std::max<size_t>(1, model.size()));
+  // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w about
+  // the model's centre c and a translation v has Jacobian [(p - c) x n, n]. About the camera
+  // origin instead, a metre away, a rotation of w radians misplaces the model by |w|^2 / 2 metres
+  // beyond the linear model (5 mm at 0.1 rad), and the iterations wander instead of converging.
+  PointToPlaneSystem sys;
+  sys.centre = (pose * sampleCentre(model)).cast<double>();
+  const Eigen::Vector3d& c = sys.centre;
+  for (size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3f p = pose * model.points[i];
+    const Eigen::Vector3f n = pose.linear() * model.normals[i];
+    if (n.dot(p) >= 0) continue;  // faces away from the camera: cannot be observed
+    const int s = closest(p);
+    if (s < 0 || n.dot(segment.normals[s]) < cos_normal_) continue;
+    const Eigen::Vector3d ns = segment.normals[s].cast<double>();
+    const Eigen::Vector3d pd = p.cast<double>();
+    Eigen::Matrix<double, 6, 1> j;
+    j << (pd - c).cross(ns), ns;
+    const double w = segment.confidence[s];
+    const double r = ns.dot(pd - segment.points[s].cast<double>());
+    sys.jtj += w * j * j.transpose();
+    sys.jtr += w * j * r;
+    sys.weighted_squares += w * r * r;
+    ++sys.used;
+  }
+  return sys;
+}
+
+void IcpRefiner::iterate(const ObjectModel& model, IcpRun& run, int until, int region,
+                         const LcpScorer* near) const {
   Eigen::Isometry3f& current = run.pose;
   for (until = std::min(until, params_.iterations); !run.finished && run.iterations < until;
        ++run.iterations) {
-    // Linearised point-to-plane step: residual n.(p - s) with p moved by a small rotation w about
-    // the model's centre c and a translation v has Jacobian [(p - c) x n, n]. About the camera
-    // origin instead, a metre away, a rotation of w radians misplaces the model by |w|^2 / 2 metres
-    // beyond the linear model (5 mm at 0.1 rad), and the iterations wander instead of converging.
-    const Eigen::Vector3d c = (current * model_centre).cast<double>();
-    Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();
-    Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
-    int used = 0;
-    for (size_t i = 0; i < model.size(); ++i) {
-      const Eigen::Vector3f p = current * model.points[i];
-      const Eigen::Vector3f n = current.linear() * model.normals[i];
-      if (n.dot(p) >= 0) continue;  // faces away from the camera: cannot be observed
-      const int s = closest(p);
-      if (s < 0 || n.dot(segment.normals[s]) < cos_normal_) continue;
-      const Eigen::Vector3d ns = segment.normals[s].cast<double>();
-      const Eigen::Vector3d pd = p.cast<double>();
-      Eigen::Matrix<double, 6, 1> j;
-      j << (pd - c).cross(ns), ns;
-      const double w = segment.confidence[s];
-      const double r = ns.dot(pd - segment.points[s].cast<double>());
-      jtj += w * j * j.transpose();
-      jtr += w * j * r;
-      ++used;
-    }
-    if (used < 6) {
+    const PointToPlaneSystem sys = system(model, current, region, near);
+    const Eigen::Vector3d& c = sys.centre;
+    if (sys.used < 6) {
       run.finished = true;
       break;
     }
-    const Eigen::Matrix<double, 6, 1> x = jtj.ldlt().solve(-jtr);
+    const Eigen::Matrix<double, 6, 1> x = sys.jtj.ldlt().solve(-sys.jtr);
     if (!x.allFinite()) {
       run.finished = true;
       break;

@@ -164,6 +164,8 @@ ResultsEvaluation DatasetEvaluator::evaluate(const std::vector<Target>& targets,
       result.score = row->second->score;
       result.errors = object(t.obj_id).evaluate(&estimate, instances);
       result.gt_index = gt_index[result.errors.instance];
+      result.estimate = estimate;
+      result.truth = instances[static_cast<size_t>(result.errors.instance)];
     } else {
       result.errors = object(t.obj_id).evaluate(nullptr, instances);
     }

@@ -42,11 +42,17 @@ void DemoRecorder::onObjects(const ObjectPoseArray::ConstPtr& message) {
   fmt::print("frame {} of {}: {} object(s), latency {:.0f} ms\n", latencies_.size(), frames_,
              message->objects.size(), 1000 * latency);
   for (const ObjectPose& o : message->objects) {
-    const auto& p = o.pose.position;
+    const auto& p = o.pose.pose.position;
     fmt::print(
-        "  {} (id {}): score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm, {:.0f} ms, {} hypotheses\n",
-        instanceName(o.name, o.instance), o.id, o.score, 1000 * p.x, 1000 * p.y, 1000 * p.z,
+        "  {} (id {}): confidence {:.2f}, score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm (std {:.1f} "
+        "mm), {:.0f} ms, {} hypotheses\n",
+        instanceName(o.name, o.instance), o.id, o.confidence, o.score, 1000 * p.x, 1000 * p.y,
+        1000 * p.z,
+        1000 * std::sqrt(o.pose.covariance[0] + o.pose.covariance[7] + o.pose.covariance[14]),
         1000 * o.estimation_time, o.hypotheses_verified);
+  }
+  for (const RejectedObject& r : message->rejected) {
+    fmt::print("  {} (id {}): rejected, {}\n", instanceName(r.name, r.instance), r.id, r.reason);
   }
   if (static_cast<int>(latencies_.size()) < frames_) return;
   std::vector<double> sorted = latencies_;
@@ -72,9 +78,10 @@ void DemoRecorder::writeResults(const ObjectPoseArray& message, double latency) 
     r.im_id = image_;
     r.obj_id = o.id;
     r.score = o.score;
-    const auto& q = o.pose.orientation;
+    const geometry_msgs::Pose& pose = o.pose.pose;
+    const auto& q = pose.orientation;
     r.R = Eigen::Quaterniond(q.w, q.x, q.y, q.z).normalized().toRotationMatrix();
-    r.t_mm = 1000.0 * Eigen::Vector3d(o.pose.position.x, o.pose.position.y, o.pose.position.z);
+    r.t_mm = 1000.0 * Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
     r.time = latency;
     rows.push_back(r);
   }

@@ -51,6 +51,12 @@ void NodeStatistics::replaced() {
   ++replaced_;
 }
 
+void NodeStatistics::poses(size_t published, size_t rejected) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  poses_published_ += published;
+  poses_rejected_ += rejected;
+}
+
 void NodeStatistics::estimated() {
   std::lock_guard<std::mutex> lock(mutex_);
   ++estimated_;
@@ -115,6 +121,8 @@ diagnostic_msgs::DiagnosticStatus NodeStatistics::status(const std::string& name
   add("service calls", service_calls_);
   add("service calls failed", service_failures_);
   add("time jumps back", time_jumps_);
+  add("poses published", poses_published_);
+  add("poses rejected (low confidence)", poses_rejected_);
 
   const uint64_t problems = rejected_total_ + droppedTotal();
   out.level = problems > reported_problems_ ? diagnostic_msgs::DiagnosticStatus::WARN
@@ -137,8 +145,11 @@ std::string NodeStatistics::summary() const {
     line += fmt::format("; {}: {} received, dropped {}", in.topic, in.received,
                         describeDropCounts(in.dropped));
   }
-  return line + fmt::format("; {} service calls ({} failed); time went back {} times",
-                            service_calls_, service_failures_, time_jumps_);
+  return line + fmt::format(
+                    "; {} service calls ({} failed); time went back {} times; {} poses published, "
+                    "{} rejected for a low confidence",
+                    service_calls_, service_failures_, time_jumps_, poses_published_,
+                    poses_rejected_);
 }
 
 }  // namespace stocs_ros

@@ -7,7 +7,8 @@
 namespace stocs_ros {
 
 OutputPublisher::OutputPublisher(ros::NodeHandle& pnh)
-    : poses_(pnh.advertise<geometry_msgs::PoseArray>("poses", 1)),
+    : pnh_(pnh),
+      poses_(pnh.advertise<geometry_msgs::PoseArray>("poses", 1)),
       objects_(pnh.advertise<ObjectPoseArray>("objects", 1)),
       markers_(pnh.advertise<visualization_msgs::MarkerArray>("markers", 1)) {}
 
@@ -26,6 +27,23 @@ void OutputPublisher::publish(const FrameResult& result, const EstimationSetup& 
   poses_.publish(toPoseArray(result));
   objects_.publish(toObjectPoseArray(result, setup));
   if (output.markers) markers_.publish(toMarkers(result, setup, shown_markers_));
+  publishPerObject(result, setup);
+}
+
+void OutputPublisher::publishPerObject(const FrameResult& result, const EstimationSetup& setup) {
+  for (const FoundPose& f : foundPoses(result)) {
+    const std::string name = instanceName(setup.config.objects[f.outcome->object].name, f.instance);
+    auto publisher = per_object_.find(name);
+    if (publisher == per_object_.end()) {
+      publisher = per_object_
+                      .emplace(name, pnh_.advertise<geometry_msgs::PoseWithCovarianceStamped>(
+                                         "pose/" + name, 1))
+                      .first;
+    }
+    if (publisher->second.getNumSubscribers() > 0) {
+      publisher->second.publish(toPoseWithCovariance(f, result, setup));
+    }
+  }
 }
 
 void OutputPublisher::publishTransforms(const FrameResult& result, const EstimationSetup& setup) {
@@ -37,7 +55,7 @@ void OutputPublisher::publishTransforms(const FrameResult& result, const Estimat
     const auto last = tf_stamps_.find(child);
     if (last != tf_stamps_.end() && result.header.stamp <= last->second) continue;
     geometry_msgs::TransformStamped t =
-        tf2::eigenToTransform(Eigen::Isometry3d(f.pose.cast<double>()));
+        tf2::eigenToTransform(Eigen::Isometry3d(f.estimate.pose.cast<double>()));
     t.header = result.header;
     t.child_frame_id = child;
     transforms.push_back(t);

@@ -5,6 +5,8 @@
 
 #include <cmath>
 
+#include "stocs_ros/pose_uncertainty.h"
+
 namespace stocs_ros {
 namespace {
 
@@ -37,7 +39,7 @@ visualization_msgs::Marker objectBodyMarker(const FoundPose& f, const Estimation
   const size_t object = f.outcome->object;
   visualization_msgs::Marker m =
       bodyMarker(setup.config.objects[object], setup.models[object].model,
-                 Eigen::Isometry3d(f.pose.cast<double>()), colour(object));
+                 Eigen::Isometry3d(f.estimate.pose.cast<double>()), colour(object));
   m.ns = setup.config.objects[object].name;
   m.id = static_cast<int>(2 * f.instance);
   return m;
@@ -50,31 +52,74 @@ visualization_msgs::Marker labelMarker(const FoundPose& f, const EstimationSetup
   m.id = static_cast<int>(2 * f.instance + 1);
   m.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
   m.action = visualization_msgs::Marker::ADD;
-  m.text = fmt::format("{} {:.3f}", instanceName(m.ns, f.instance), f.score);
+  m.text = fmt::format("{} {:.3f}", instanceName(m.ns, f.instance), f.estimate.score);
   m.pose.orientation.w = 1;
   m.pose.position = tf2::toMsg(labelPositionAbove(
-      setup.models[object].model, Eigen::Isometry3d(f.pose.cast<double>()), kLabelHeight));
+      setup.models[object].model, Eigen::Isometry3d(f.estimate.pose.cast<double>()), kLabelHeight));
   m.scale.z = kLabelHeight;
   m.color.r = m.color.g = m.color.b = m.color.a = 1;
   return m;
 }
 
-}  // namespace
+stocs::PoseCovariance covarianceOf(const FoundPose& f, const EstimationSetup& setup) {
+  return publishableCovariance(f.estimate.covariance, f.estimate.pose,
+                               setup.models[f.outcome->object].model);
+}
 
-std::vector<FoundPose> foundPoses(const FrameResult& result) {
+visualization_msgs::Marker objectUncertaintyMarker(const FoundPose& f,
+                                                   const EstimationSetup& setup) {
+  const size_t object = f.outcome->object;
+  visualization_msgs::Marker m =
+      uncertaintyMarker(f.estimate.pose, covarianceOf(f, setup), colour(object));
+  m.ns = kUncertaintyNamespace;
+  m.id = kUncertaintyIdsPerObject * static_cast<int>(object) + static_cast<int>(f.instance);
+  return m;
+}
+
+/// A message about `f` with its object's name and id, its instance and its confidence.
+template <class Message>
+Message identifiedMessage(const FoundPose& f, const EstimationSetup& setup) {
+  const ObjectConfig& config = setup.config.objects[f.outcome->object];
+  Message m;
+  m.name = config.name;
+  m.id = config.id;
+  m.instance = static_cast<uint32_t>(f.instance);
+  m.confidence = f.estimate.confidence;
+  return m;
+}
+
+/// Every pose of the result whose acceptance is `accepted`.
+std::vector<FoundPose> posesAccepted(const FrameResult& result, bool accepted) {
   std::vector<FoundPose> out;
   for (const ObjectOutcome& o : result.objects) {
     const stocs::PoseEstimate& e = o.estimate;
     if (!e.found) continue;
     if (e.instances.empty()) {
-      out.push_back({&o, 0, e.pose, e.score});
+      stocs::InstancePose only;
+      only.pose = e.pose;
+      only.score = e.score;
+      if (accepted) out.push_back({&o, 0, only});
       continue;
     }
     for (size_t k = 0; k < e.instances.size(); ++k) {
-      out.push_back({&o, k, e.instances[k].pose, e.instances[k].score});
+      if (e.instances[k].accepted == accepted) out.push_back({&o, k, e.instances[k]});
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<FoundPose> foundPoses(const FrameResult& result) {
+  return posesAccepted(result, true);
+}
+
+std::vector<FoundPose> rejectedPoses(const FrameResult& result) {
+  return posesAccepted(result, false);
+}
+
+std::string rejectionReason(const FoundPose& rejected) {
+  return rejected.estimate.rejection.empty() ? "rejected" : rejected.estimate.rejection;
 }
 
 std::string instanceName(const std::string& object, size_t instance) {
@@ -85,24 +130,36 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
   ObjectPoseArray out;
   out.header = result.header;
   for (const FoundPose& f : foundPoses(result)) {
-    const ObjectConfig& config = setup.config.objects[f.outcome->object];
-    ObjectPose p;
-    p.name = config.name;
-    p.id = config.id;
-    p.instance = static_cast<uint32_t>(f.instance);
-    p.score = f.score;
-    p.pose = poseMsg(f.pose);
+    ObjectPose p = identifiedMessage<ObjectPose>(f, setup);
+    p.score = f.estimate.score;
+    p.pose.pose = poseMsg(f.estimate.pose);
+    p.pose.covariance = covarianceMsg(covarianceOf(f, setup));
     p.estimation_time = f.outcome->estimate.seconds;
     p.hypotheses_verified = f.outcome->estimate.hypotheses;
     out.objects.push_back(p);
   }
+  for (const FoundPose& f : rejectedPoses(result)) {
+    RejectedObject r = identifiedMessage<RejectedObject>(f, setup);
+    r.reason = rejectionReason(f);
+    out.rejected.push_back(r);
+  }
+  return out;
+}
+
+geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const FoundPose& found,
+                                                              const FrameResult& result,
+                                                              const EstimationSetup& setup) {
+  geometry_msgs::PoseWithCovarianceStamped out;
+  out.header = result.header;
+  out.pose.pose = poseMsg(found.estimate.pose);
+  out.pose.covariance = covarianceMsg(covarianceOf(found, setup));
   return out;
 }
 
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result) {
   geometry_msgs::PoseArray out;
   out.header = result.header;
-  for (const FoundPose& f : foundPoses(result)) out.poses.push_back(poseMsg(f.pose));
+  for (const FoundPose& f : foundPoses(result)) out.poses.push_back(poseMsg(f.estimate.pose));
   return out;
 }
 
@@ -112,6 +169,9 @@ visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const Estim
   for (const FoundPose& f : foundPoses(result)) {
     out.markers.push_back(objectBodyMarker(f, setup));
     out.markers.push_back(labelMarker(f, setup));
+  }
+  for (const FoundPose& f : foundPoses(result)) {
+    out.markers.push_back(objectUncertaintyMarker(f, setup));
   }
   separateOverlappingLabels(out);
   deleteMarkersNoLongerShown(out, shown);

@@ -53,8 +53,15 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
       missing += (missing.empty() ? "" : ", ") + config.objects[o.object].name;
     }
   }
-  return fmt::format("{} of {} objects found{}", found, result.objects.size(),
-                     missing.empty() ? "" : "; no pose for " + missing);
+  std::string rejected;
+  for (const FoundPose& f : rejectedPoses(result)) {
+    rejected += fmt::format("{}{} ({})", rejected.empty() ? "" : ", ",
+                            instanceName(config.objects[f.outcome->object].name, f.instance),
+                            rejectionReason(f));
+  }
+  return fmt::format("{} of {} objects found{}{}", found, result.objects.size(),
+                     missing.empty() ? "" : "; no pose for " + missing,
+                     rejected.empty() ? "" : "; rejected: " + rejected);
 }
 
 /// Whether an optional message of an ~estimate request was filled in.
@@ -292,6 +299,7 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
     }
   }
   output_.publish(result, *queued.setup, queued.timeline);
+  statistics_->poses(foundPoses(result).size(), rejectedPoses(result).size());
   if (!queued.requested) statistics_->estimated();
   return result;
 }

@@ -248,6 +248,7 @@ class EstimateRun {
                               t.cpu_seconds,
                               e.segment_points,
                               e.hypotheses});
+      if (e.found) object_runs_.back().covariance = e.instances.front().covariance;
       const std::string head = fmt::format("scene {} image {} object {}: segment {} points, ",
                                            image.scene, image.im, t.obj, e.segment_points);
       if (!e.found) {

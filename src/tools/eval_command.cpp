@@ -10,6 +10,7 @@
 #include "cli_options.h"
 #include "commands.h"
 #include "confidence_report.h"
+#include "coverage_report.h"
 #include "eval_report.h"
 #include "stocs/eval/dataset_evaluation.h"
 #include "stocs/io/bop_dataset.h"
@@ -32,6 +33,7 @@ struct EvalOptions {
   std::string csv;
   std::string targets_csv;
   std::string reliability_plot;
+  std::vector<std::string> per_object;
 };
 
 /// The targets of dataset `i`: its --targets file's, else every selected object of scene_gt.json
@@ -99,6 +101,10 @@ void checkPairs(const EvalOptions& o) {
     throw InputError(fmt::format("--targets takes one file per --dataset: got {} for {} datasets",
                                  o.targets.size(), o.datasets.size()));
   }
+  if (!o.per_object.empty() && o.per_object.size() != o.results.size()) {
+    throw InputError(fmt::format("--per-object and --results come in pairs: got {} and {}",
+                                 o.per_object.size(), o.results.size()));
+  }
 }
 
 int runEval(const EvalOptions& o) {
@@ -125,6 +131,8 @@ int runEval(const EvalOptions& o) {
       table.add(o.results[i], name, std::to_string(obj), targets_of_obj);
     }
     reliability.emplace_back(o.results[i], table.add(o.results[i], name, "all", ev.targets));
+    if (!o.per_object.empty())
+      notes += coverageNote(o.results[i], o.per_object[i], ev.targets, dataset);
     if (ev.duplicates || ev.not_targets) {
       notes += fmt::format(
           "- {}: {} rows beyond a target's highest-scoring one and {} rows for objects that are "
@@ -182,6 +190,9 @@ Command registerEval(CLI::App& app) {
                   "mean score of each of 10 score bins, one line per results file");
   cmd->add_option("--markdown", o->markdown, "Markdown report file (default: standard output)");
   cmd->add_option("--csv", o->csv, "Summary rows as CSV");
+  cmd->add_option("--per-object", o->per_object,
+                  "`stocs estimate --per-object` file of each --results: reports the share of true "
+                  "errors of correct poses inside the covariances' 50% and 90% ellipsoids");
   cmd->add_option("--targets-csv", o->targets_csv, "One CSV row per target with every error");
   return {cmd, [o] { return runEval(*o); }};
 }

@@ -1,8 +1,11 @@
 #pragma once
 // What `stocs estimate --per-object FILE` records for every (image, object) it attempts, found or
 // not: the method's own time for the object, which BOP results (one time per image) cannot hold.
-// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses.
+// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses,covariance; the
+// last is the returned pose's 6x6 covariance (InstancePose::covariance), 36 space-separated numbers
+// row by row (zeros when nothing was found or the method gives none).
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <vector>
 
@@ -19,6 +22,7 @@ struct ObjectRun {
   double cpu_seconds = 0;
   size_t segment_points = 0;
   long hypotheses = 0;
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs);

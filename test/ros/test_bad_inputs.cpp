@@ -247,7 +247,7 @@ TEST_F(BadInputs, AGoodFrameAfterwardsIsEstimated) {
   ASSERT_EQ(output.header.stamp, stamp);
   ASSERT_EQ(output.objects.size(), 1u);
   Eigen::Isometry3d pose;
-  tf2::fromMsg(output.objects[0].pose, pose);
+  tf2::fromMsg(output.objects[0].pose.pose, pose);
   const Eigen::Isometry3d truth = groundTruthPose(g_dataset, 0, 0, 1);
   EXPECT_LT(translationError(pose, truth), 0.005);
   EXPECT_LT(rotationError(pose, truth), 0.05);

@@ -94,7 +94,7 @@ class NodeOutputs : public ::testing::Test {
     ASSERT_EQ(r.result.objects.size(), 1u) << what;
     EXPECT_EQ(r.result.header.stamp, input.stamp) << what;
     EXPECT_EQ(r.result.header.frame_id, input.frame_id) << what;
-    expectNearTruth(poseToEigen(r.result.objects[0].pose), what);
+    expectNearTruth(poseToEigen(r.result.objects[0].pose.pose), what);
   }
 
   static void expectError(Estimate::Request request, const std::string& expected) {
@@ -118,7 +118,7 @@ TEST_F(NodeOutputs, ObjectsMessageIsNearTheGroundTruth) {
   EXPECT_GT(o.score, 0.0);
   EXPECT_GT(o.estimation_time, 0.0);
   EXPECT_GT(o.hypotheses_verified, 0);
-  expectNearTruth(poseToEigen(o.pose), "~objects");
+  expectNearTruth(poseToEigen(o.pose.pose), "~objects");
 }
 
 TEST_F(NodeOutputs, PoseArrayAndTfGiveTheSamePose) {
@@ -233,7 +233,7 @@ TEST_F(NodeOutputs, ServiceEstimatesTheLatestFrameAndRejectsUnknownObjects) {
   EXPECT_EQ(r.result.header.frame_id, g_expected.frame_id);
   ASSERT_EQ(r.result.objects.size(), 1u);
   EXPECT_EQ(r.result.objects[0].name, g_expected.object);
-  expectNearTruth(poseToEigen(r.result.objects[0].pose), "~estimate");
+  expectNearTruth(poseToEigen(r.result.objects[0].pose.pose), "~estimate");
 
   Estimate::Request unknown;
   unknown.objects = {"no_such_object"};

@@ -62,7 +62,7 @@ TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
 
   std::map<int, std::vector<Eigen::Isometry3d>> reported;
   for (const ObjectPose& o : message->objects) {
-    const Eigen::Isometry3d pose = poseToEigen(o.pose);
+    const Eigen::Isometry3d pose = poseToEigen(o.pose.pose);
     reported[o.id].push_back(pose);
     const std::string frame = instanceName(o.name, o.instance);
     const Eigen::Isometry3d on_tf = tf2::transformToEigen(buffer.lookupTransform(

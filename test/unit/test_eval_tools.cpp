@@ -188,6 +188,33 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
   EXPECT_GT(number(rows[0], "seconds"), 0);
   EXPECT_GT(number(rows[0], "cpu_seconds"), 0);
   EXPECT_GT(number(rows[0], "segment_points"), 50);
+
+  // The pose's covariance, 36 numbers: symmetric, positive variances, and `stocs eval
+  // --per-object` checks the true error against it.
+  std::istringstream entries(rows[0].at("covariance"));
+  std::vector<double> c{std::istream_iterator<double>(entries), std::istream_iterator<double>()};
+  ASSERT_EQ(c.size(), 36u) << rows[0].at("covariance");
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_GT(c[static_cast<size_t>(7 * i)], 0) << i;
+    for (int j = 0; j < 6; ++j)
+      EXPECT_EQ(c[static_cast<size_t>(6 * i + j)], c[static_cast<size_t>(6 * j + i)]);
+  }
+  ASSERT_EQ(test::runCommand(kTool + " eval --dataset " + data() + " --results " +
+                                 (root_ / "r.csv").string() + " --per-object " +
+                                 (root_ / "objects.csv").string(),
+                             out),
+            0)
+      << out;
+  EXPECT_NE(out.find("covariance: of the true errors of 1 correct poses"), std::string::npos)
+      << out;
+  EXPECT_EQ(test::runCommand(kTool + " eval --dataset " + data() + " --results " +
+                                 (root_ / "r.csv").string() + " --per-object " +
+                                 (root_ / "r.csv").string(),
+                             out),
+            2);
+  EXPECT_NE(out.find("r.csv:2: expected 8 comma-separated numbers and a covariance of 36"),
+            std::string::npos)
+      << out;
 }
 
 /// ADD, ADD-S, APC rotation and translation errors of an estimate of an asymmetric object, from

@@ -42,6 +42,21 @@ struct IcpRun {
   explicit IcpRun(const Eigen::Isometry3f& start) : pose(start), before_last(start) {}
 };
 
+/// Mean of the model's samples: the point about which the refinement's steps turn.
+Eigen::Vector3f sampleCentre(const ObjectModel& model);
+
+/// The weighted point-to-plane normal equations of a pose: one row per camera-facing model point
+/// with a correspondence, Jacobian [(p - c) x n, n] of the residual n.(p - s) with respect to a
+/// small rotation w about `centre` (the posed model's centre) followed by a translation v, each
+/// row weighted by the network confidence of its segment point.
+struct PointToPlaneSystem {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();                       ///< camera frame, metres
+  Eigen::Matrix<double, 6, 6> jtj = Eigen::Matrix<double, 6, 6>::Zero();  ///< (w, v) order
+  Eigen::Matrix<double, 6, 1> jtr = Eigen::Matrix<double, 6, 1>::Zero();
+  double weighted_squares = 0;  ///< sum of weight x residual^2, m^2
+  int used = 0;                 ///< correspondences
+};
+
 /// Refines poses against one segment; the correspondence grids are built once for all of them.
 class IcpRefiner {
  public:
@@ -63,6 +78,11 @@ class IcpRefiner {
   /// same steps as one call.
   void iterate(const ObjectModel& model, IcpRun& run, int until, int region,
                const LcpScorer* near = nullptr) const;
+
+  /// The normal equations at `pose` against the segment points of `region` (-1: all); `near` as
+  /// in refine(). One pass over the model's correspondences.
+  PointToPlaneSystem system(const ObjectModel& model, const Eigen::Isometry3f& pose, int region,
+                            const LcpScorer* near = nullptr) const;
 
   const IcpParams& params() const { return params_; }
 

@@ -49,6 +49,8 @@ struct TargetResult {
   double score = 0;   ///< of the evaluated row
   int gt_index = -1;  ///< matched entry of scene_gt.json for the image; -1 when missing
   TargetErrors errors;
+  RigidPose estimate;  ///< the evaluated row's pose (mm); identity when missing
+  RigidPose truth;     ///< the matched ground-truth instance (mm); identity when missing
 };
 
 struct ResultsEvaluation {

@@ -1,11 +1,14 @@
-// A frame's result as messages: found objects only, their fields, every instance of an object, and
-// markers that delete what is no longer found.
+// A frame's result as messages: accepted poses with their covariance, rejected ones listed apart,
+// every instance of an object, and markers (bodies, labels, uncertainty ellipsoids) that delete
+// what is no longer found.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <tuple>
 
+#include "stocs_ros/pose_uncertainty.h"
 #include "stocs_ros/result_messages.h"
 
 namespace stocs_ros {
@@ -53,11 +56,12 @@ TEST(ResultMessages, OnlyFoundObjectsAreReported) {
   EXPECT_FLOAT_EQ(objects.objects[0].score, 0.25f);
   EXPECT_EQ(objects.objects[0].estimation_time, 0.5);
   EXPECT_EQ(objects.objects[0].hypotheses_verified, 42);
-  EXPECT_FLOAT_EQ(objects.objects[0].pose.position.x, 0.3f);
-  EXPECT_EQ(objects.objects[0].pose.orientation.w, 1.0);
+  EXPECT_FLOAT_EQ(objects.objects[0].pose.pose.position.x, 0.3f);
+  EXPECT_EQ(objects.objects[0].pose.pose.orientation.w, 1.0);
+  EXPECT_TRUE(objects.rejected.empty());
   const geometry_msgs::PoseArray poses = toPoseArray(result);
   ASSERT_EQ(poses.poses.size(), 1u);
-  EXPECT_EQ(poses.poses[0], objects.objects[0].pose);
+  EXPECT_EQ(poses.poses[0], objects.objects[0].pose.pose);
 }
 
 TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
@@ -67,7 +71,7 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   both.header.frame_id = "camera";
   both.objects = {outcome(0, true, 0.1f), outcome(1, true, 0.2f)};
   const visualization_msgs::MarkerArray first = toMarkers(both, setup, shown);
-  ASSERT_EQ(first.markers.size(), 4u);
+  ASSERT_EQ(first.markers.size(), 6u);
   EXPECT_EQ(first.markers[0].ns, "box");
   EXPECT_EQ(first.markers[0].type, visualization_msgs::Marker::POINTS);
   EXPECT_LE(first.markers[0].points.size(), 2000u);
@@ -78,23 +82,28 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   EXPECT_EQ(first.markers[2].mesh_resource, "package://stocs_ros/meshes/can.stl");
   EXPECT_FLOAT_EQ(first.markers[2].scale.x, 0.001f);
   for (const auto& m : first.markers) EXPECT_EQ(m.header.frame_id, "camera");
-  EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"can", 0}, {"can", 1}}));
+  EXPECT_EQ(first.markers[4].ns, "uncertainty");
+  EXPECT_EQ(first.markers[4].type, visualization_msgs::Marker::SPHERE);
+  EXPECT_EQ(first.markers[5].id, 1000);
+  EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0},
+                                        {"box", 1},
+                                        {"can", 0},
+                                        {"can", 1},
+                                        {"uncertainty", 0},
+                                        {"uncertainty", 1000}}));
 
   FrameResult only_can = both;
   only_can.objects[0].estimate.found = false;
   const visualization_msgs::MarkerArray second = toMarkers(only_can, setup, shown);
-  ASSERT_EQ(second.markers.size(), 4u);
-  int deleted = 0;
+  ASSERT_EQ(second.markers.size(), 6u);
+  std::set<MarkerKey> deleted;
   for (const auto& m : second.markers) {
-    if (m.action == visualization_msgs::Marker::DELETE) {
-      EXPECT_EQ(m.ns, "box");
-      ++deleted;
-    }
+    if (m.action == visualization_msgs::Marker::DELETE) deleted.insert({m.ns, m.id});
   }
-  EXPECT_EQ(deleted, 2);
-  EXPECT_EQ(shown, (std::set<MarkerKey>{{"can", 0}, {"can", 1}}));
+  EXPECT_EQ(deleted, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"uncertainty", 0}}));
+  EXPECT_EQ(shown, (std::set<MarkerKey>{{"can", 0}, {"can", 1}, {"uncertainty", 1000}}));
   // Once deleted, a marker is not deleted again.
-  EXPECT_EQ(toMarkers(only_can, setup, shown).markers.size(), 2u);
+  EXPECT_EQ(toMarkers(only_can, setup, shown).markers.size(), 3u);
 }
 
 TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
@@ -116,7 +125,7 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
       Eigen::AngleAxisf(0.5f, Eigen::Vector3f(1, 0.2f, 0).normalized()).matrix();
   std::set<MarkerKey> shown;
   const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
-  ASSERT_EQ(markers.markers.size(), 4u);
+  ASSERT_EQ(markers.markers.size(), 6u);
   for (size_t object = 0; object < 2; ++object) {
     const visualization_msgs::Marker& label = markers.markers[2 * object + 1];
     ASSERT_EQ(label.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
@@ -152,7 +161,7 @@ TEST(ResultMessages, EstimateColoursAvoidTheGroundTruthsGreen) {
   std::set<MarkerKey> shown;
   std::set<std::tuple<float, float, float>> distinct;
   for (const visualization_msgs::Marker& m : toMarkers(result, setup, shown).markers) {
-    if (m.type == visualization_msgs::Marker::TEXT_VIEW_FACING) continue;
+    if (m.type == visualization_msgs::Marker::TEXT_VIEW_FACING || m.ns == "uncertainty") continue;
     // Hue in degrees of the fully saturated colour.
     const float r = m.color.r, g = m.color.g, b = m.color.b;
     const float top = std::max({r, g, b}), range = top - std::min({r, g, b});
@@ -188,7 +197,7 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
   for (uint32_t k = 0; k < 3; ++k) {
     EXPECT_EQ(objects.objects[k].name, "box");
     EXPECT_EQ(objects.objects[k].instance, k);
-    EXPECT_FLOAT_EQ(objects.objects[k].pose.position.x, 0.1f * (k + 1));
+    EXPECT_FLOAT_EQ(objects.objects[k].pose.pose.position.x, 0.1f * (k + 1));
     EXPECT_FLOAT_EQ(objects.objects[k].score, 0.5f - 0.1f * k);
   }
   EXPECT_EQ(objects.objects[3].name, "can");
@@ -199,7 +208,7 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
   EXPECT_EQ(instanceName("box", 2), "box_2");
   std::set<MarkerKey> shown;
   const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
-  ASSERT_EQ(markers.markers.size(), 8u);
+  ASSERT_EQ(markers.markers.size(), 12u);
   EXPECT_EQ(markers.markers[4].ns, "box");
   EXPECT_EQ(markers.markers[4].id, 4);
   EXPECT_EQ(markers.markers[5].text, "box_2 0.300");
@@ -211,7 +220,117 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
   for (const auto& m : next.markers) {
     if (m.action == visualization_msgs::Marker::DELETE) deleted.insert({m.ns, m.id});
   }
-  EXPECT_EQ(deleted, (std::set<MarkerKey>{{"box", 2}, {"box", 3}, {"box", 4}, {"box", 5}}));
+  EXPECT_EQ(
+      deleted,
+      (std::set<MarkerKey>{
+          {"box", 2}, {"box", 3}, {"box", 4}, {"box", 5}, {"uncertainty", 1}, {"uncertainty", 2}}));
+}
+
+/// A symmetric positive-definite covariance whose entries differ but for the symmetric pairs:
+/// 2^r 3^k + 2^k 3^r (x 1e-9), diagonally dominant.
+stocs::PoseCovariance distinctCovariance() {
+  stocs::PoseCovariance c;
+  for (int r = 0; r < 6; ++r) {
+    for (int k = 0; k < 6; ++k) {
+      c(r, k) = 1e-9 * (std::pow(2, r) * std::pow(3, k) + std::pow(2, k) * std::pow(3, r));
+    }
+  }
+  c.diagonal() += Eigen::Matrix<double, 6, 1>::LinSpaced(6, 1e-3, 6e-3);
+  return c;
+}
+
+TEST(ResultMessages, RejectedPosesAreListedApartAndNeverPublished) {
+  const EstimationSetup setup = twoObjects();
+  FrameResult result;
+  result.header.frame_id = "camera";
+  result.objects = {withInstances(0, 2), withInstances(1, 1)};
+  result.objects[0].estimate.instances[0].confidence = 0.9f;
+  result.objects[0].estimate.instances[1].accepted = false;
+  result.objects[0].estimate.instances[1].confidence = 0.1f;
+  result.objects[0].estimate.instances[1].rejection = "confidence 0.10 below 0.50";
+  result.objects[1].estimate.instances[0].accepted = false;
+  result.objects[1].estimate.instances[0].confidence = 0.05f;
+
+  const ObjectPoseArray objects = toObjectPoseArray(result, setup);
+  ASSERT_EQ(objects.objects.size(), 1u);
+  EXPECT_EQ(objects.objects[0].name, "box");
+  EXPECT_EQ(objects.objects[0].instance, 0u);
+  EXPECT_FLOAT_EQ(objects.objects[0].confidence, 0.9f);
+  ASSERT_EQ(objects.rejected.size(), 2u);
+  EXPECT_EQ(objects.rejected[0].name, "box");
+  EXPECT_EQ(objects.rejected[0].id, 5);
+  EXPECT_EQ(objects.rejected[0].instance, 1u);
+  EXPECT_FLOAT_EQ(objects.rejected[0].confidence, 0.1f);
+  EXPECT_EQ(objects.rejected[0].reason, "confidence 0.10 below 0.50");
+  EXPECT_EQ(objects.rejected[1].name, "can");
+  EXPECT_EQ(objects.rejected[1].reason, "rejected");
+
+  EXPECT_EQ(toPoseArray(result).poses.size(), 1u);
+  EXPECT_EQ(foundPoses(result).size(), 1u);
+  EXPECT_EQ(rejectedPoses(result).size(), 2u);
+  std::set<MarkerKey> shown;
+  toMarkers(result, setup, shown);
+  EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"uncertainty", 0}}));
+}
+
+TEST(ResultMessages, TheCovarianceIsCopiedRowByRowInREP103Order) {
+  const EstimationSetup setup = twoObjects();
+  FrameResult result;
+  result.header.frame_id = "camera";
+  result.header.stamp = ros::Time(3);
+  result.objects = {withInstances(0, 1)};
+  const stocs::PoseCovariance c = distinctCovariance();
+  result.objects[0].estimate.instances[0].covariance = c;
+  const ObjectPoseArray objects = toObjectPoseArray(result, setup);
+  ASSERT_EQ(objects.objects.size(), 1u);
+  const geometry_msgs::PoseWithCovarianceStamped single =
+      toPoseWithCovariance(foundPoses(result)[0], result, setup);
+  EXPECT_EQ(single.header.stamp, ros::Time(3));
+  EXPECT_EQ(single.header.frame_id, "camera");
+  EXPECT_EQ(single.pose, objects.objects[0].pose);
+  for (int r = 0; r < 6; ++r) {
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(objects.objects[0].pose.covariance[static_cast<size_t>(6 * r + k)], c(r, k));
+    }
+  }
+  // The ellipsoid: diameters of the 90% region (chi-square 3 dof: 6.2514) along the eigenvectors.
+  std::set<MarkerKey> shown;
+  const visualization_msgs::Marker& ellipsoid = toMarkers(result, setup, shown).markers.back();
+  ASSERT_EQ(ellipsoid.ns, "uncertainty");
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(c.topLeftCorner<3, 3>());
+  const Eigen::Vector3d expected = 2 * (6.251388631 * eigen.eigenvalues()).cwiseSqrt();
+  EXPECT_NEAR(ellipsoid.scale.x, expected.x(), 1e-6);
+  EXPECT_NEAR(ellipsoid.scale.z, expected.z(), 1e-6);
+  const Eigen::Quaterniond q(ellipsoid.pose.orientation.w, ellipsoid.pose.orientation.x,
+                             ellipsoid.pose.orientation.y, ellipsoid.pose.orientation.z);
+  EXPECT_NEAR(std::abs((q * Eigen::Vector3d::UnitZ()).dot(eigen.eigenvectors().col(2))), 1, 1e-6);
+  EXPECT_FLOAT_EQ(ellipsoid.pose.position.x, 0.1f);
+  EXPECT_LT(ellipsoid.color.a, 1.0f);
+}
+
+TEST(ResultMessages, ACovarianceWithNaNIsNeverPublished) {
+  const EstimationSetup setup = twoObjects();
+  FrameResult result;
+  result.objects = {withInstances(0, 1), withInstances(1, 1)};
+  result.objects[0].estimate.instances[0].covariance = distinctCovariance();
+  result.objects[0].estimate.instances[0].covariance(3, 4) = NAN;
+  // The other one gives none at all (zeros): not positive definite either.
+  const ObjectPoseArray objects = toObjectPoseArray(result, setup);
+  ASSERT_EQ(objects.objects.size(), 2u);
+  for (const ObjectPose& o : objects.objects) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> c(
+        o.pose.covariance.data());
+    ASSERT_TRUE(c.allFinite()) << o.name;
+    // The prior: the object's diameter (5 m here) in translation, pi in rotation.
+    EXPECT_NEAR(c(3, 3), M_PI * M_PI, 1e-9) << o.name;
+    EXPECT_GE(c(0, 0), 24.9) << o.name;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(c);
+    EXPECT_GT(eigen.eigenvalues().minCoeff(), 0) << o.name;
+  }
+  std::set<MarkerKey> shown;
+  for (const visualization_msgs::Marker& m : toMarkers(result, setup, shown).markers) {
+    EXPECT_TRUE(std::isfinite(m.scale.x) && std::isfinite(m.pose.orientation.w)) << m.ns;
+  }
 }
 
 }  // namespace
