@@ -126,8 +126,12 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
   std::stable_sort(taken.begin(), taken.end(), higherScore);
   std::vector<InstancePose> instances;
   for (const Hypothesis& h : taken) {
-    const LcpDetail detail = c.scorer.detail(c.model, h.pose, h.region);
-    instances.push_back({h.pose, detail.score, detail, h.refined, h.region});
+    InstancePose& instance = instances.emplace_back();
+    instance.pose = h.pose;
+    instance.lcp = c.scorer.detail(c.model, h.pose, h.region);
+    instance.score = instance.lcp.score;
+    instance.refined = h.refined;
+    instance.region = h.region;
   }
   return instances;
 }
