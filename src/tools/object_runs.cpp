@@ -1,21 +1,47 @@
 #include "object_runs.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "report_table.h"
 #include "stocs/util/error.h"
 
 namespace stocs::tools {
+namespace {
+
+constexpr int kFixedColumns = 8;  // scene_id to hypotheses
+constexpr int kColumns = kFixedColumns + ConfidenceEvidence::kCount + 1;
+
+/// The row's numbers, or nothing unless there are exactly kColumns.
+std::optional<std::vector<double>> parseRow(const std::string& line) {
+  std::vector<double> values;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) {
+    std::stringstream cs(cell);
+    double v = 0;
+    if (!(cs >> v) || !(cs >> std::ws).eof()) return std::nullopt;
+    values.push_back(v);
+  }
+  if (values.size() != kColumns) return std::nullopt;
+  return values;
+}
+
+}  // namespace
 
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs) {
-  std::string text = "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses\n";
+  std::string text = fmt::format(
+      "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses,{},confidence\n",
+      fmt::join(ConfidenceEvidence::names(), ","));
   for (const ObjectRun& r : runs) {
-    text += fmt::format("{},{},{},{},{:.6f},{:.6f},{},{}\n", r.target.scene_id, r.target.im_id,
-                        r.target.obj_id, r.found ? 1 : 0, r.seconds, r.cpu_seconds,
-                        r.segment_points, r.hypotheses);
+    text += fmt::format("{},{},{},{},{:.6f},{:.6f},{},{},{:.5f},{:.5f}\n", r.target.scene_id,
+                        r.target.im_id, r.target.obj_id, r.found ? 1 : 0, r.seconds, r.cpu_seconds,
+                        r.segment_points, r.hypotheses, fmt::join(r.evidence.features(), ","),
+                        r.confidence);
   }
   writeTextFile(file, text);
 }
@@ -27,18 +53,22 @@ std::vector<ObjectRun> readObjectRuns(const std::filesystem::path& file) {
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {
     if (line_no == 1 || line.empty()) continue;  // header
-    std::stringstream ss(line);
-    ObjectRun r;
-    int found = 0;
-    char c[7];
-    if (!(ss >> r.target.scene_id >> c[0] >> r.target.im_id >> c[1] >> r.target.obj_id >> c[2] >>
-          found >> c[3] >> r.seconds >> c[4] >> r.cpu_seconds >> c[5] >> r.segment_points >> c[6] >>
-          r.hypotheses) ||
-        std::string(c, 7) != ",,,,,,,") {
-      throw InputError(
-          fmt::format("{}:{}: expected 8 comma-separated numbers", file.string(), line_no));
+    const std::optional<std::vector<double>> v = parseRow(line);
+    if (!v) {
+      throw InputError(fmt::format("{}:{}: expected {} comma-separated numbers", file.string(),
+                                   line_no, kColumns));
     }
-    r.found = found != 0;
+    const std::vector<double>& x = *v;
+    ObjectRun r;
+    r.target = {static_cast<int>(x[0]), static_cast<int>(x[1]), static_cast<int>(x[2])};
+    r.found = x[3] != 0;
+    r.seconds = x[4];
+    r.cpu_seconds = x[5];
+    r.segment_points = static_cast<size_t>(x[6]);
+    r.hypotheses = static_cast<long>(x[7]);
+    r.evidence = ConfidenceEvidence::fromFeatures(
+        Eigen::Map<const Eigen::Matrix<double, ConfidenceEvidence::kCount, 1>>(&x[kFixedColumns]));
+    r.confidence = static_cast<float>(x[kColumns - 1]);
     runs.push_back(r);
   }
   return runs;

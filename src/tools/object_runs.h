@@ -1,11 +1,14 @@
 #pragma once
 // What `stocs estimate --per-object FILE` records for every (image, object) it attempts, found or
-// not: the method's own time for the object, which BOP results (one time per image) cannot hold.
-// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses.
+// not: the method's own time for the object, which BOP results (one time per image) cannot hold,
+// and the first pose's confidence evidence and confidence, which `stocs calibrate` fits.
+// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses, then the
+// evidence (ConfidenceEvidence::names()) and confidence.
 
 #include <filesystem>
 #include <vector>
 
+#include "stocs/estimation/pose_confidence.h"
 #include "stocs/eval/dataset_evaluation.h"
 
 namespace stocs::tools {
@@ -19,6 +22,8 @@ struct ObjectRun {
   double cpu_seconds = 0;
   size_t segment_points = 0;
   long hypotheses = 0;
+  ConfidenceEvidence evidence;  ///< of the first pose (zero when none)
+  float confidence = 0;         ///< of the first pose (zero when none)
 };
 
 void writeObjectRuns(const std::filesystem::path& file, const std::vector<ObjectRun>& runs);
