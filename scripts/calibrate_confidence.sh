@@ -11,7 +11,8 @@
 #   scripts/calibrate_confidence.sh [--held-out] DATASETS OUT
 #     DATASETS: the folder holding lmo-cat/, rutgers-packed/, ycbv-0000/; OUT: a working folder
 # STOCS: the `stocs` tool (default: the catkin workspace's). SYNTH_OPTIONS: further options of
-# `stocs synth` (e.g. absent-object targets once synth writes them). About 5 minutes on 2 cores.
+# `stocs synth` (e.g. --absent N). Where synth writes test_targets_bop19.json (absent-object
+# targets), estimate and eval take it. About 2 minutes on 2 cores.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 held_out=false
@@ -52,8 +53,12 @@ for preset in clean mild noisy very-noisy; do
     # shellcheck disable=SC2086  # the options are words
     "$tool" synth --out "$scene" --objects 6 --distractors 2 --images 2 --segmentation "$preset" \
       --seed "$seed" --quiet $synth_options > /dev/null
+    # Where synth writes a targets file, its absent objects (inst_count 0) are negatives too.
     eval_options=()
-    label "synth-$preset-$seed" "$scene" --prob real --seed "$seed"
+    if [ -f "$scene/test_targets_bop19.json" ]; then
+      eval_options=(--targets "$scene/test_targets_bop19.json")
+    fi
+    label "synth-$preset-$seed" "$scene" --prob real --seed "$seed" "${eval_options[@]}"
   done
 done
 if $held_out; then

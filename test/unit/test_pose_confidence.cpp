@@ -6,6 +6,7 @@
 
 #include "stocs/estimation/pose_confidence.h"
 #include "stocs/estimation/stocs_estimator.h"
+#include "stocs/methods/pose_method.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -71,6 +72,13 @@ TEST(PoseConfidence, ParametersOutOfRangeAreRefused) {
   p.free_space = NAN;
   EXPECT_THROW(p.validate(), InputError);
   EXPECT_NO_THROW(model().validate());
+}
+
+TEST(PoseConfidence, OnlyStocsMethodsGiveOne) {
+  // The CLI writes the confidence as the score of these, a baseline's own score otherwise.
+  for (const std::string& name : methodNames()) {
+    EXPECT_EQ(makeMethod(name)->givesConfidence(), name.rfind("stocs", 0) == 0) << name;
+  }
 }
 
 }  // namespace
