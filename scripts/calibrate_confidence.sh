@@ -51,7 +51,7 @@ for preset in clean mild noisy very-noisy; do
     scene="$out/synth-$preset-$seed"
     rm -rf "$scene"
     # shellcheck disable=SC2086  # the options are words
-    "$tool" synth --out "$scene" --objects 6 --distractors 2 --images 2 --segmentation "$preset" \
+    "$tool" synth --out "$scene" --objects 4 --distractors 2 --images 3 --segmentation "$preset" \
       --seed "$seed" --quiet $synth_options > /dev/null
     # Where synth writes a targets file, its absent objects (inst_count 0) are negatives too.
     eval_options=()

@@ -43,14 +43,14 @@ struct ConfidenceEvidence {
 /// The logistic model: confidence = sigmoid(intercept + sum of weight * feature).
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -3.8488f;
-  float surface_confirmed = 1.4795f;
-  float free_space = -1.6634f;
-  float map_support = 2.5929f;
-  float matched = 1.5678f;
-  float consensus = 2.8848f;
+  float intercept = -6.1716f;
+  float surface_confirmed = 2.7202f;
+  float free_space = -3.8818f;
+  float map_support = 4.4065f;
+  float matched = 2.2907f;
+  float consensus = 1.951f;
   /// Poses below this confidence are rejected: not published, not written to results.
-  float min_confidence = 0.45f;
+  float min_confidence = 0.4f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ConfidenceParams>& schema();
