@@ -127,11 +127,10 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
   std::stable_sort(taken.begin(), taken.end(), higherScore);
   std::vector<InstancePose> instances;
   for (const Hypothesis& h : taken) {
-    const LcpDetail detail = c.scorer.detail(c.model, h.pose, h.region);
     InstancePose& instance = instances.emplace_back();
     instance.pose = h.pose;
-    instance.score = detail.score;
-    instance.lcp = detail;
+    instance.lcp = c.scorer.detail(c.model, h.pose, h.region);
+    instance.score = instance.lcp.score;
     instance.refined = h.refined;
     instance.region = h.region;
     instance.covariance = poseCovariance(c.model, c.icp, h.pose, h.region, &c.scorer);

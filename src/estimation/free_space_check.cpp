@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
 
@@ -35,7 +36,13 @@ FreeSpaceCheck::FreeSpaceCheck(const OrganizedCloud& cloud, const CameraIntrinsi
 }
 
 float FreeSpaceCheck::violation(const ObjectModel& model, const Eigen::Isometry3f& pose) const {
-  int seen = 0, free = 0;
+  const SurfaceComparison c = compare(model, pose);
+  return c.seen == 0 ? 0.0f : static_cast<float>(c.free) / static_cast<float>(c.seen);
+}
+
+SurfaceComparison FreeSpaceCheck::compare(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                                          const cv::Mat* probability) const {
+  SurfaceComparison c;
   for (size_t i = 0; i < model.size(); ++i) {
     const Eigen::Vector3f p = pose * model.points[i];
     // Samples on the far side of the object are hidden by the object itself.
@@ -46,10 +53,16 @@ float FreeSpaceCheck::violation(const ObjectModel& model, const Eigen::Isometry3
     if (u < 0 || v < 0 || u >= cloud_.width || v >= cloud_.height) continue;
     const int index = v * cloud_.width + u;
     if (!cloud_.isValid(index)) continue;  // no measurement: nothing is known there
-    ++seen;
-    if (cloud_.points[index].z() > p.z() + params_.margin) ++free;
+    ++c.seen;
+    const float behind = cloud_.points[index].z() - p.z();
+    if (behind > params_.margin) {
+      ++c.free;
+    } else if (behind >= -params_.margin) {  // farther in front of the sample: occluded
+      ++c.confirmed;
+      if (probability) c.support += probability->at<float>(v, u);
+    }
   }
-  return seen == 0 ? 0.0f : static_cast<float>(free) / static_cast<float>(seen);
+  return c;
 }
 
 }  // namespace stocs

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -17,13 +18,41 @@ const ParamSet<PipelineParams>& PipelineParams::schema() {
                 "Soft segment (paper eqs. 1-3)")
           .nest(&PipelineParams::model, "model", ModelPreparationParams::schema(),
                 "Model preparation")
-          .nest(&PipelineParams::stocs, "stocs", StocsParams::schema(), "StoCS (paper section 3)");
+          .nest(&PipelineParams::stocs, "stocs", StocsParams::schema(), "StoCS (paper section 3)")
+          .nest(&PipelineParams::confidence, "confidence", ConfidenceParams::schema(),
+                "Confidence and rejection (docs/confidence.md)");
   return schema;
 }
 
 void PipelineParams::validate() const {
   schema().validate(*this);
 }
+
+namespace {
+
+/// The evidence of every instance that needs the frame (see ConfidenceEvidence), then its verdict.
+/// Without `surface` (no camera) nothing confirms a pose.
+void judgeInstances(PoseEstimate& result, const ObjectModel& model, const FreeSpaceCheck* surface,
+                    const cv::Mat& probability, const ConfidenceParams& params) {
+  for (InstancePose& pose : result.instances) {
+    ConfidenceEvidence& e = pose.evidence;
+    if (pose.lcp.facing > 0) {
+      e.matched = std::min(1.0f, static_cast<float>(pose.lcp.matched) / pose.lcp.facing);
+    }
+    const SurfaceComparison c =
+        surface ? surface->compare(model, pose.pose, &probability) : SurfaceComparison{};
+    if (c.seen > 0) {
+      e.surface_confirmed = static_cast<float>(c.confirmed) / static_cast<float>(c.seen);
+      e.free_space = static_cast<float>(c.free) / static_cast<float>(c.seen);
+    }
+    if (c.confirmed > 0) {
+      e.map_support = static_cast<float>(c.support / c.confirmed);
+    }
+    judgePose(pose, params);
+  }
+}
+
+}  // namespace
 
 PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
                             const PreparedModel& model, const PipelineParams& params,
@@ -35,7 +64,7 @@ PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const c
   const double segment_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
-  if (params.stocs.free_space.enabled && !camera) {
+  if (!camera) {                              // also for the confidence evidence
     try {
       recovered = intrinsicsFromCloud(cloud);
       camera = &*recovered;
@@ -43,12 +72,13 @@ PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const c
       // Too few valid points to recover the camera: nothing is known about free space either.
     }
   }
-  std::optional<FreeSpaceCheck> free_space;
-  if (params.stocs.free_space.enabled && camera) {
-    free_space.emplace(cloud, *camera, params.stocs.free_space);
-  }
-  PoseEstimate result =
-      StocsEstimator(model, params.stocs).estimate(segment, free_space ? &*free_space : nullptr);
+  std::optional<FreeSpaceCheck> surface;  // ranks candidates when enabled, always gives evidence
+  if (camera) surface.emplace(cloud, *camera, params.stocs.free_space);
+  const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
+  PoseEstimate result = StocsEstimator(model, params.stocs)
+                            .estimate(segment, rank_by_free_space ? &*surface : nullptr);
+  judgeInstances(result, model.model, surface ? &*surface : nullptr, probability,
+                 params.confidence);
   result.segment_points = segment.size();
   result.stages.segment = segment_seconds;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

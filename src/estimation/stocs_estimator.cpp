@@ -12,6 +12,7 @@
 #include "base_verification.h"
 #include "candidate_refinement.h"
 #include "stocs/estimation/base_consensus.h"
+#include "stocs/estimation/instance_separation.h"
 
 namespace stocs {
 namespace {
@@ -85,6 +86,24 @@ std::vector<Hypothesis> rankBases(const std::vector<BaseOutcome>& outcomes, Pose
   }
   std::stable_sort(ranked.begin(), ranked.end(), higherScore);
   return ranked;
+}
+
+/// Sets each instance's consensus evidence: of the bases (best first) whose pose puts the model's
+/// centre within `separation` of the instance's, those in the same place up to symmetries, at most
+/// kConsensusBases, as a share of kConsensusBases. The centre test spares most ADD-S tests.
+void addConsensus(const ObjectModel& model, const Eigen::Vector3f& centre, float separation,
+                  const std::vector<Hypothesis>& ranked, std::vector<InstancePose>& instances) {
+  const InstanceSeparation same_place(model, separation);
+  const int needed = ConfidenceEvidence::kConsensusBases;
+  for (InstancePose& instance : instances) {
+    const Eigen::Vector3f at = instance.pose * centre;
+    int agree = 0;
+    for (size_t i = 0; i < ranked.size() && agree < needed; ++i) {
+      if ((ranked[i].pose * centre - at).norm() >= separation) continue;
+      agree += same_place.samePlace(instance.pose, ranked[i].pose);
+    }
+    instance.evidence.consensus = static_cast<float>(agree) / static_cast<float>(needed);
+  }
 }
 
 }  // namespace
@@ -245,6 +264,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       selectInstances(ranked, refinedBases(), static_cast<size_t>(params_.instances), refinement,
                       params_.instance_separation, early.begun(), threads, result.icp_steps);
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
+  addConsensus(model_.model, proximity_.centre(),
+               params_.instance_separation * model_.model.diameter, ranked, result.instances);
   result.found = true;
   const InstancePose& best = result.instances.front();
   result.pose = best.pose;

@@ -20,5 +20,6 @@ Command registerOverlay(CLI::App& app);
 Command registerSimstats(CLI::App& app);
 Command registerMeshes(CLI::App& app);
 Command registerSynth(CLI::App& app);
+Command registerCalibrate(CLI::App& app);
 
 }  // namespace stocs::tools

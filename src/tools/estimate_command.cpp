@@ -115,7 +115,9 @@ class EstimateRun {
     }
     writeBopResults(o_.out, results_);
     if (!o_.per_object.empty()) writeObjectRuns(o_.per_object, object_runs_);
-    fmt::print(stderr, "{} of {} objects found; results in {}\n", found_, targets_, o_.out);
+    fmt::print(stderr, "{} of {} objects found{}; results in {}\n", found_, targets_,
+               rejected_ ? fmt::format(", {} poses rejected below min_confidence", rejected_) : "",
+               o_.out);
     return 0;
   }
 
@@ -247,7 +249,9 @@ class EstimateRun {
                               e.seconds,
                               t.cpu_seconds,
                               e.segment_points,
-                              e.hypotheses});
+                              e.hypotheses,
+                              e.found ? e.instances.front().evidence : ConfidenceEvidence{},
+                              e.found ? e.instances.front().confidence : 0.0f});
       if (e.found) object_runs_.back().covariance = e.instances.front().covariance;
       const std::string head = fmt::format("scene {} image {} object {}: segment {} points, ",
                                            image.scene, image.im, t.obj, e.segment_points);
@@ -270,12 +274,22 @@ class EstimateRun {
     std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
     std::string line;
     for (size_t k = 0; k < e.instances.size(); ++k) {
-      const RigidPose pose = toBop(e.instances[k].pose);
-      results_.push_back(
-          {image.scene, image.im, obj, e.instances[k].score, pose.R, pose.t, image_seconds_});
+      const InstancePose& instance = e.instances[k];
+      const RigidPose pose = toBop(instance.pose);
       if (k > 0) line += fmt::format("\n  instance {}: ", k);
-      line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", e.instances[k].score,
-                          pose.t.x(), pose.t.y(), pose.t.z());
+      line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", instance.score, pose.t.x(),
+                          pose.t.y(), pose.t.z());
+      // A method with a calibrated confidence writes it as the BOP score, and only accepted poses.
+      if (method_->givesConfidence()) {
+        line += instance.accepted ? fmt::format(", confidence {:.3f}", instance.confidence)
+                                  : ", rejected: " + instance.rejection;
+        rejected_ += !instance.accepted;
+      }
+      if (!method_->givesConfidence() || instance.accepted) {
+        results_.push_back({image.scene, image.im, obj,
+                            method_->givesConfidence() ? instance.confidence : instance.score,
+                            pose.R, pose.t, image_seconds_});
+      }
       if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
       const NearestInstance near = nearestInstance(points_mm, pose, instances, obj);
       if (near.index < 0 || diameter <= 0) continue;
@@ -303,7 +317,7 @@ class EstimateRun {
   std::vector<BopResult> results_;
   std::vector<ObjectRun> object_runs_;
   double image_seconds_ = 0;
-  int targets_ = 0, found_ = 0;
+  int targets_ = 0, found_ = 0, rejected_ = 0;
 };
 
 int runEstimate(const EstimateOptions& o) {
@@ -321,7 +335,8 @@ Command registerEstimate(CLI::App& app) {
   cmd->add_option("--out", o->out, "Results file (BOP CSV)")->required();
   cmd->add_option("--per-object", o->per_object,
                   "Also write a CSV row per attempted object: found, the method's wall and CPU "
-                  "seconds, segment points, hypotheses");
+                  "seconds, segment points, hypotheses, the first pose's confidence evidence and "
+                  "confidence");
   addSelectionOptions(*cmd, o->split, o->scenes, o->objects);
   cmd->add_option("--boundaries", o->boundaries,
                   "Instance boundary maps edge/IMAGE.png: 'auto' uses them where present, 'off' "

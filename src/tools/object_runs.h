@@ -1,14 +1,17 @@
 #pragma once
 // What `stocs estimate --per-object FILE` records for every (image, object) it attempts, found or
-// not: the method's own time for the object, which BOP results (one time per image) cannot hold.
-// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses,covariance; the
-// last is the returned pose's 6x6 covariance (InstancePose::covariance), 36 space-separated numbers
-// row by row (zeros when nothing was found or the method gives none).
+// not: the method's own time for the object, which BOP results (one time per image) cannot hold,
+// and the first pose's confidence evidence and confidence, which `stocs calibrate` fits.
+// CSV: scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses, then the
+// evidence (ConfidenceEvidence::names()), confidence, and the first pose's 6x6 covariance
+// (InstancePose::covariance), 36 blank-separated numbers row by row (zeros when nothing was found
+// or the method gives none).
 
 #include <Eigen/Core>
 #include <filesystem>
 #include <vector>
 
+#include "stocs/estimation/pose_confidence.h"
 #include "stocs/eval/dataset_evaluation.h"
 
 namespace stocs::tools {
@@ -22,6 +25,8 @@ struct ObjectRun {
   double cpu_seconds = 0;
   size_t segment_points = 0;
   long hypotheses = 0;
+  ConfidenceEvidence evidence;  ///< of the first pose (zero when none)
+  float confidence = 0;         ///< of the first pose (zero when none)
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 

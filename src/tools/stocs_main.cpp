@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
       stocs::tools::registerEstimate(app), stocs::tools::registerPrepare(app),
       stocs::tools::registerEval(app),     stocs::tools::registerBench(app),
       stocs::tools::registerOverlay(app),  stocs::tools::registerSimstats(app),
-      stocs::tools::registerMeshes(app),   stocs::tools::registerSynth(app)};
+      stocs::tools::registerMeshes(app),   stocs::tools::registerSynth(app),
+      stocs::tools::registerCalibrate(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const stocs::tools::Command& command : commands) {

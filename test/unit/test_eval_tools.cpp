@@ -212,9 +212,105 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
                                  (root_ / "r.csv").string(),
                              out),
             2);
-  EXPECT_NE(out.find("r.csv:2: expected 8 comma-separated numbers and a covariance of 36"),
+  EXPECT_NE(out.find("r.csv:2: expected 14 comma-separated numbers and a covariance of 36"),
             std::string::npos)
       << out;
+  // The pose's confidence evidence and confidence, each in [0, 1], for `stocs calibrate`.
+  for (const char* column :
+       {"surface_confirmed", "free_space", "map_support", "matched", "consensus", "confidence"}) {
+    EXPECT_GE(number(rows[0], column), 0) << column;
+    EXPECT_LE(number(rows[0], column), 1) << column;
+  }
+  // A pose in plain view: its surface is confirmed, not in free space, and agreed on.
+  EXPECT_GT(number(rows[0], "surface_confirmed"), 0.5);
+  EXPECT_LT(number(rows[0], "free_space"), 0.1);
+  EXPECT_GT(number(rows[0], "consensus"), 0.5);
+}
+
+TEST_F(EvalCliTest, EstimateWritesTheConfidenceAsScoreAndLeavesRejectedPosesOut) {
+  const std::string base = kTool + " estimate --dataset " + data() + " --no-cache --bases 20 " +
+                           "--per-object " + (root_ / "objects.csv").string() + " --out ";
+  std::string out;
+  ASSERT_EQ(test::runCommand(base + (root_ / "all.csv").string() + " --min-confidence 0", out), 0)
+      << out;
+  const std::vector<BopResult> all = readBopResults(root_ / "all.csv");
+  ASSERT_EQ(all.size(), 1u);
+  const double confidence = number(readCsv(root_ / "objects.csv").at(0), "confidence");
+  EXPECT_NEAR(all[0].score, confidence, 1e-4);
+  EXPECT_NE(out.find("confidence "), std::string::npos) << out;
+  // Above the pose's confidence, the pose is rejected: reported with its reason, not written.
+  ASSERT_EQ(test::runCommand(base + (root_ / "none.csv").string() + " --min-confidence 1", out), 0)
+      << out;
+  EXPECT_TRUE(readBopResults(root_ / "none.csv").empty());
+  EXPECT_NE(out.find("rejected: confidence "), std::string::npos) << out;
+  EXPECT_NE(out.find("1 of 1 objects found, 1 poses rejected below min_confidence"),
+            std::string::npos)
+      << out;
+}
+
+/// Per-object rows (evidence: surface_confirmed = x, the rest 0.5) and targets rows labelled right
+/// for x above 0.5, except every tenth, for `stocs calibrate`.
+void writeLabelledRun(const std::filesystem::path& objects, const std::filesystem::path& targets,
+                      int rows) {
+  std::ofstream o(objects), t(targets);
+  o << "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses,"
+       "surface_confirmed,free_space,map_support,matched,consensus,confidence,covariance\n";
+  t << "results,dataset,scene_id,im_id,obj_id,found,adds_success\n";
+  std::string zeros;  // a covariance of 36 zeros
+  for (int k = 0; k < 36; ++k) zeros += k ? " 0" : "0";
+  for (int i = 0; i < rows; ++i) {
+    const double x = (i + 0.5) / rows;
+    o << "0," << i << ",1,1,0.01,0.01,100,10," << x << ",0.5,0.5,0.5,0.5,0," << zeros << "\n";
+    t << "r,d,0," << i << ",1,1," << ((x > 0.5) != (i % 10 == 0) ? 1 : 0) << "\n";
+  }
+}
+
+TEST_F(EvalCliTest, CalibrateFitsLabelledRunsAndNamesBadInputs) {
+  writeLabelledRun(root_ / "o.csv", root_ / "t.csv", 200);
+  const std::string pair =
+      " --objects " + (root_ / "o.csv").string() + " --targets " + (root_ / "t.csv").string();
+  std::string out;
+  ASSERT_EQ(test::runCommand(kTool + " calibrate" + pair, out), 0) << out;
+  EXPECT_NE(out.find("200 poses, 100 right, 100 wrong"), std::string::npos) << out;
+  EXPECT_NE(out.find("estimation:\n  confidence:\n    intercept: "), std::string::npos) << out;
+  EXPECT_NE(out.find("  float surface_confirmed = "), std::string::npos) << out;
+  EXPECT_NE(out.find("| min_confidence | right poses rejected | wrong poses rejected |"),
+            std::string::npos)
+      << out;
+  // 10% of the labels flipped: the ranking is right for 90% of each class.
+  const size_t auc = out.find("ROC AUC ");
+  ASSERT_NE(auc, std::string::npos) << out;
+  EXPECT_NEAR(std::stod(out.substr(auc + 8)), 0.9, 0.05) << out;
+
+  EXPECT_EQ(test::runCommand(
+                kTool + " calibrate" + pair + " --objects " + (root_ / "o.csv").string(), out),
+            2);
+  EXPECT_NE(out.find("--objects and --targets come in pairs: got 2 per-object files and 1"),
+            std::string::npos)
+      << out;
+  // Exit code and message of `stocs calibrate` on one pair of files in the scratch folder.
+  const auto refused = [&](const std::string& objects, const std::string& targets,
+                           const std::string& message) {
+    EXPECT_EQ(test::runCommand(kTool + " calibrate --objects " + (root_ / objects).string() +
+                                   " --targets " + (root_ / targets).string(),
+                               out),
+              2);
+    EXPECT_NE(out.find(message), std::string::npos) << out;
+  };
+  writeLabelledRun(root_ / "o.csv", root_ / "short.csv", 100);
+  writeLabelledRun(root_ / "long.csv", root_ / "t.csv", 200);
+  refused("long.csv", "short.csv", "short.csv: no row for scene 0 image 100 object 1 of ");
+  std::ofstream(root_ / "bad.csv") << "scene_id,im_id,obj_id,score\n0,0,1,0.5\n";
+  refused("long.csv", "bad.csv",
+          "bad.csv: no column 'adds_success' (expected `stocs eval --targets-csv`)");
+  // A per-object file of the format before the confidence (8 columns).
+  std::ofstream(root_ / "old.csv") << "scene_id,im_id,obj_id,found,seconds,cpu_seconds,"
+                                      "segment_points,hypotheses\n0,0,1,1,0.1,0.1,100,10\n";
+  refused("old.csv", "t.csv", "old.csv:2: expected 14 comma-separated numbers");
+  // Only right poses: nothing to tell them from.
+  writeLabelledRun(root_ / "one.csv", root_ / "one_t.csv", 2);
+  std::ofstream(root_ / "one_t.csv") << "scene_id,im_id,obj_id,adds_success\n0,0,1,1\n0,1,1,1\n";
+  refused("one.csv", "one_t.csv", "2 poses of which 2 right: the fit needs right and wrong ones");
 }
 
 /// ADD, ADD-S, APC rotation and translation errors of an estimate of an asymmetric object, from

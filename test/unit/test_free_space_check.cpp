@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <opencv2/core.hpp>
 
 #include "stocs/estimation/free_space_check.h"
 #include "stocs/util/error.h"
@@ -65,6 +66,24 @@ TEST(FreeSpaceCheck, CountsCameraFacingSamplesInFrontOfTheMeasuredSurface) {
   turned.linear() = Eigen::AngleAxisf(3.14159265f, Eigen::Vector3f::UnitY()).toRotationMatrix();
   turned.translation() = Eigen::Vector3f(0, 0, 1.9f);  // puts (0, 0, 1) at z = 0.9
   EXPECT_FLOAT_EQ(check.violation(samples({{0, 1.0f}}), turned), 0.0f);
+}
+
+TEST(FreeSpaceCheck, ComparesTheVisibleSurfaceWithTheMeasuredOne) {
+  const OrganizedCloud cloud = wall();
+  const CameraIntrinsics k = camera();
+  const FreeSpaceCheck check(cloud, k, FreeSpaceParams{});
+  cv::Mat probability(kSize, kSize, CV_32FC1, cv::Scalar(0.25f));
+  probability.at<float>(10, 10) = 0.75f;  // the pixel of (0.025, 0, 1), see below
+  // On the wall (two, 0 and 4 mm off), 5 cm in front (free), 5 cm behind (occluded).
+  const SurfaceComparison c =
+      check.compare(samples({{0.025f, 1.0f}, {0.1f, 1.004f}, {0.2f, 0.95f}, {0.3f, 1.05f}}),
+                    Eigen::Isometry3f::Identity(), &probability);
+  EXPECT_EQ(c.seen, 4);
+  EXPECT_EQ(c.free, 1);
+  EXPECT_EQ(c.confirmed, 2);
+  EXPECT_NEAR(c.support, 0.75 + 0.25, 1e-6);
+  // Without a map the counts stay and the support is zero.
+  EXPECT_EQ(check.compare(samples({{0, 1.0f}}), Eigen::Isometry3f::Identity()).support, 0.0);
 }
 
 TEST(FreeSpaceCheck, RejectsBadParametersAndMismatchedIntrinsics) {

@@ -13,6 +13,10 @@
 #include "stocs/model/object_model.h"
 #include "stocs/util/param_set.h"
 
+namespace cv {
+class Mat;
+}
+
 namespace stocs {
 
 struct FreeSpaceParams {
@@ -29,6 +33,14 @@ struct FreeSpaceParams {
   void validate() const;
 };
 
+/// How a pose's visible surface compares with the measured depth (FreeSpaceCheck::compare).
+struct SurfaceComparison {
+  int seen = 0;        ///< camera-facing model samples projecting onto a measured pixel
+  int free = 0;        ///< of those, in front of the measured surface by more than the margin
+  int confirmed = 0;   ///< of those, within the margin of the measured surface
+  double support = 0;  ///< sum of the probability map at the confirmed samples' pixels
+};
+
 class FreeSpaceCheck {
  public:
   /// Keeps references: `cloud` and `camera` (its intrinsics) must outlive the check.
@@ -40,6 +52,11 @@ class FreeSpaceCheck {
   /// Of the model samples that face the camera at `pose` (model to camera) and project onto a
   /// pixel with a measurement, the fraction in free space; 0 when none qualifies.
   float violation(const ObjectModel& model, const Eigen::Isometry3f& pose) const;
+
+  /// The counts behind violation(), and the agreement of the rest with the measured surface;
+  /// `probability` (CV_32FC1, the cloud's size), when given, is read at the confirmed pixels.
+  SurfaceComparison compare(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                            const cv::Mat* probability = nullptr) const;
 
  private:
   const OrganizedCloud& cloud_;

@@ -2,6 +2,7 @@
 // One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
 // the benchmark and the ROS node so all of them run exactly the same estimation.
 
+#include "stocs/estimation/pose_confidence.h"
 #include "stocs/estimation/soft_segment.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/geometry/camera.h"
@@ -20,6 +21,7 @@ struct PipelineParams {
   SoftSegmentParams segment;
   ModelPreparationParams model;
   StocsParams stocs;
+  ConfidenceParams confidence;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<PipelineParams>& schema();
@@ -31,7 +33,8 @@ struct PipelineParams {
 /// instance regions when a boundary map is given (see labelRegions), and runs StoCS. `camera`, the
 /// cloud's intrinsics for the free-space check, is recovered from the cloud when null (a caller
 /// estimating several objects of a frame passes it once known). The estimate's seconds and stages
-/// include the soft segment. Throws InputError on size or type mismatches.
+/// include the soft segment. Every instance gets its confidence evidence, confidence and verdict
+/// (judgePose). Throws InputError on size or type mismatches.
 PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
                             const PreparedModel& model, const PipelineParams& params,
                             const cv::Mat* boundary_map = nullptr,

@@ -19,6 +19,7 @@
 #include "stocs/estimation/free_space_check.h"
 #include "stocs/estimation/icp_refiner.h"
 #include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/pose_confidence.h"
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/estimation/soft_segment.h"
 #include "stocs/model/model_cache.h"
@@ -110,6 +111,7 @@ struct InstancePose {
   /// Probability that the pose is right (ADD-S below 10% of the object's diameter), calibrated on
   /// labelled estimates; comparable across objects, scenes and segment sizes (StoCS only).
   float confidence = 0;
+  ConfidenceEvidence evidence;  ///< what the confidence is computed from (StoCS only)
   /// The pose may be acted on: its confidence reaches the configured minimum. A rejected pose is
   /// kept for evaluation, but neither published nor written to results.
   bool accepted = true;

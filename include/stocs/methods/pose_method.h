@@ -29,6 +29,9 @@ class PoseMethod {
   /// that this offline step stays out of the timings, as the PPF map of StoCS is prepared before
   /// the clock starts. Optional: estimate() builds what is missing itself.
   virtual void prepare(const PreparedModel& /*model*/) {}
+  /// Whether the method's poses carry a calibrated confidence and verdict (InstancePose::
+  /// confidence, accepted); a method without one is judged by its own score.
+  virtual bool givesConfidence() const { return false; }
   /// Not const: a method may keep per-model state (e.g. a trained detector) between frames.
   virtual PoseEstimate estimate(const ObjectInput& input) = 0;
 };

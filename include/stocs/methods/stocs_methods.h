@@ -8,6 +8,7 @@ namespace stocs {
 class StocsMethod : public PoseMethod {
  public:
   std::string name() const override { return "stocs"; }
+  bool givesConfidence() const override { return true; }
   PoseEstimate estimate(const ObjectInput& input) override;
 };
 
@@ -16,6 +17,7 @@ class HardSegmentStocsMethod : public PoseMethod {
  public:
   explicit HardSegmentStocsMethod(float threshold) : threshold_(threshold) {}
   std::string name() const override { return "stocs-hard"; }
+  bool givesConfidence() const override { return true; }
   PoseEstimate estimate(const ObjectInput& input) override;
 
  private:

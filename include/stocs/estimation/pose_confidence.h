@@ -1,0 +1,69 @@
+#pragma once
+// The confidence of a pose: the probability that it is right (ADD-S below 10% of the object's
+// diameter), a logistic model over evidence that does not grow with the segment. The objective
+// (LCP score) sums probability over the segment, so a large segment of the wrong object can
+// outscore a small one of the right object; the shares below compare alike across objects,
+// sensors and segment sizes. Coefficients come from `stocs calibrate` (docs/confidence.md).
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+
+#include "stocs/util/param_set.h"
+
+namespace stocs {
+
+struct InstancePose;
+
+/// What the data says about one pose, each a share or a ratio, not a count.
+struct ConfidenceEvidence {
+  /// Of the model samples that face the camera under the pose and project onto a measured pixel,
+  /// the share whose measured depth agrees within the free-space margin (the surface is there).
+  float surface_confirmed = 0;
+  /// Of the same samples, the share in front of the measured depth (where the sensor sees
+  /// through): FreeSpaceCheck::violation.
+  float free_space = 0;
+  /// Mean network probability at the pixels of the confirmed samples: the network's belief
+  /// where the pose puts the object.
+  float map_support = 0;
+  /// Of the model points facing the camera, the share matched by a segment point within delta_s
+  /// with an agreeing normal (LcpDetail::matched / facing): the segment's shape under the pose.
+  float matched = 0;
+  /// Of the best bases (up to kConsensusBases), the share that put the object in the same place.
+  float consensus = 0;
+
+  static constexpr int kConsensusBases = 8;
+  static constexpr int kCount = 5;
+  /// Feature names, in the order of features() (CSV columns, calibration output).
+  static const std::array<const char*, kCount>& names();
+  Eigen::Matrix<double, kCount, 1> features() const;
+  static ConfidenceEvidence fromFeatures(const Eigen::Matrix<double, kCount, 1>& f);
+};
+
+/// The logistic model: confidence = sigmoid(intercept + sum of weight * feature).
+struct ConfidenceParams {
+  // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
+  float intercept = -6.1716f;
+  float surface_confirmed = 2.7202f;
+  float free_space = -3.8818f;
+  float map_support = 4.4065f;
+  float matched = 2.2907f;
+  float consensus = 1.951f;
+  /// Poses below this confidence are rejected: not published, not written to results.
+  float min_confidence = 0.4f;
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<ConfidenceParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+
+  /// The weights in the order of ConfidenceEvidence::features().
+  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> weights() const;
+  float confidence(const ConfidenceEvidence& evidence) const;
+};
+
+/// Sets the pose's confidence from its evidence, accepts it when it reaches min_confidence, and
+/// otherwise says why, naming its weakest evidence.
+void judgePose(InstancePose& pose, const ConfidenceParams& params);
+
+}  // namespace stocs

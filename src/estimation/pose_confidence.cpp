@@ -1,0 +1,96 @@
+#include "stocs/estimation/pose_confidence.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "stocs/estimation/stocs_estimator.h"
+
+namespace stocs {
+namespace {
+
+/// "surface_confirmed" -> "surface confirmed", for messages.
+std::string spoken(const char* name) {
+  std::string s = name;
+  std::replace(s.begin(), s.end(), '_', ' ');
+  return s;
+}
+
+}  // namespace
+
+const std::array<const char*, ConfidenceEvidence::kCount>& ConfidenceEvidence::names() {
+  static const std::array<const char*, kCount> names = {"surface_confirmed", "free_space",
+                                                        "map_support", "matched", "consensus"};
+  return names;
+}
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::features() const {
+  Eigen::Matrix<double, kCount, 1> f;
+  f << surface_confirmed, free_space, map_support, matched, consensus;
+  return f;
+}
+
+ConfidenceEvidence ConfidenceEvidence::fromFeatures(const Eigen::Matrix<double, kCount, 1>& f) {
+  const Eigen::Matrix<float, kCount, 1> v = f.cast<float>();
+  return {v[0], v[1], v[2], v[3], v[4]};
+}
+
+const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
+  const ParamRange weight = ParamRange::closed(-1000, 1000);
+  static const ParamSet<ConfidenceParams> schema =
+      ParamSet<ConfidenceParams>()
+          .add(&ConfidenceParams::intercept, "intercept", "", weight,
+               "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . evidence)")
+          .add(&ConfidenceParams::surface_confirmed, "surface_confirmed", "", weight,
+               "weight: share of the visible model surface confirmed by measured depth")
+          .add(&ConfidenceParams::free_space, "free_space", "", weight,
+               "weight: share of the visible model surface in front of measured depth")
+          .add(&ConfidenceParams::map_support, "map_support", "", weight,
+               "weight: mean network probability at the confirmed surface")
+          .add(&ConfidenceParams::matched, "matched", "", weight,
+               "weight: share of the camera-facing model points the segment matches (LCP)")
+          .add(&ConfidenceParams::consensus, "consensus", "", weight,
+               "weight: share of the 8 best bases that agree with the pose")
+          .add(&ConfidenceParams::min_confidence, "min_confidence", "", ParamRange::closed(0, 1),
+               "poses below this confidence are rejected (not published or written)")
+          .flag("--min-confidence");
+  return schema;
+}
+
+void ConfidenceParams::validate() const {
+  schema().validate(*this);
+}
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceParams::weights() const {
+  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
+  w << surface_confirmed, free_space, map_support, matched, consensus;
+  return w;
+}
+
+float ConfidenceParams::confidence(const ConfidenceEvidence& evidence) const {
+  const double z = intercept + weights().dot(evidence.features());
+  return static_cast<float>(1.0 / (1.0 + std::exp(-z)));
+}
+
+void judgePose(InstancePose& pose, const ConfidenceParams& params) {
+  pose.confidence = params.confidence(pose.evidence);
+  pose.accepted = pose.confidence >= params.min_confidence;
+  pose.rejection.clear();
+  if (pose.accepted) return;
+  // Every feature lies in [0, 1]: its shortfall is what it costs against its best value.
+  const auto f = pose.evidence.features();
+  const auto w = params.weights();
+  std::array<int, ConfidenceEvidence::kCount> order;
+  std::iota(order.begin(), order.end(), 0);
+  const auto shortfall = [&](int i) { return w[i] > 0 ? w[i] * (1 - f[i]) : -w[i] * f[i]; };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return shortfall(a) > shortfall(b); });
+  const auto& names = ConfidenceEvidence::names();
+  pose.rejection =
+      fmt::format("confidence {:.2f} below min_confidence {:.2f} ({} {:.2f}, {} {:.2f})",
+                  pose.confidence, params.min_confidence, spoken(names[order[0]]), f[order[0]],
+                  spoken(names[order[1]]), f[order[1]]);
+}
+
+}  // namespace stocs
