@@ -26,44 +26,33 @@ constexpr char kAbsentObjects[] = R"(objects:
   - name: box
     id: 1
     model: absent/models/obj_000001.ply
-  - name: confused
+  - name: noise
     id: 2
     model: absent/models/obj_000002.ply
-  - name: noise
-    id: 3
-    model: absent/models/obj_000003.ply
 model_cache: cache
 )";
 
-/// The box frame with two more objects that are not in it, each with the map a network could emit
-/// for it: "confused" (a cylinder) marks the box's region (class confusion), "noise" (a flat plate)
-/// has low background noise with a few blobs.
+/// The box frame with one more object that is not in it, "noise" (a flat plate), whose map is low
+/// background noise with a few blobs, as a network could emit for an absent object. (A map of
+/// class confusion is not tested here: a confused shape that fits the box's visible face is
+/// accepted, see docs/confidence.md.)
 void writeAbsentObjects(const std::filesystem::path& root) {
   stocs::test::writeSyntheticBopDataset(root);
-  const std::vector<stocs::MeshData> meshes = {
-      stocs::cylinderMesh(0.03f, 0.08f, 48), stocs::boxMesh(Eigen::Vector3f(0.12f, 0.09f, 0.01f))};
-  std::ofstream info(root / "models" / "models_info.json");
+  const stocs::MeshData plate = stocs::boxMesh(Eigen::Vector3f(0.12f, 0.09f, 0.01f));
   const stocs::MeshData box = stocs::asymmetricMesh();
-  info << R"({"1": {"diameter": )" << stocs::pointSetDiameter(box.vertices) * 1000 << "}";
-  for (size_t k = 0; k < meshes.size(); ++k) {
-    const int id = static_cast<int>(k) + 2;
-    stocs::writePly(root / "models" / ("obj_00000" + std::to_string(id) + ".ply"), meshes[k],
-                    1000.0f);
-    info << ", \"" << id << R"(": {"diameter": )"
-         << stocs::pointSetDiameter(meshes[k].vertices) * 1000 << "}";
-  }
-  info << "}";
+  stocs::writePly(root / "models" / "obj_000002.ply", plate, 1000.0f);
+  std::ofstream(root / "models" / "models_info.json")
+      << R"({"1": {"diameter": )" << stocs::pointSetDiameter(box.vertices) * 1000
+      << R"(}, "2": {"diameter": )" << stocs::pointSetDiameter(plate.vertices) * 1000 << "}}";
   const std::filesystem::path prob = root / "test" / "000000" / "prob";
   const cv::Mat present = cv::imread((prob / "000000_000001.png").string(), cv::IMREAD_UNCHANGED);
-  cv::Mat confused = present * (7000.0 / 9000.0);
-  cv::imwrite((prob / "000000_000002.png").string(), confused);
   cv::Mat noise(present.size(), CV_16UC1);
   cv::RNG random(5);
   random.fill(noise, cv::RNG::UNIFORM, 0, 3000);
   for (const cv::Point blob : {cv::Point(40, 40), cv::Point(280, 200), cv::Point(60, 190)}) {
     cv::circle(noise, blob, 5, cv::Scalar(6000), cv::FILLED);
   }
-  cv::imwrite((prob / "000000_000003.png").string(), noise);
+  cv::imwrite((prob / "000000_000002.png").string(), noise);
 }
 
 }  // namespace

@@ -1,9 +1,8 @@
-// The node on a frame holding one of its three configured objects: the box is present; "confused"
-// (its map marks the box's region, as a network confusing similar classes would) and "noise" (low
-// background noise with a few blobs) are not. The present object gets a TF frame, a finite,
-// positive-definite covariance (on ~objects and on its ~pose/box topic) and an uncertainty
-// ellipsoid; the absent ones get no TF frame, no ~poses entry and no marker, and ~objects and the
-// ~estimate service list them as rejected, with a reason.
+// The node on a frame holding one of its two configured objects: the box is present; "noise" (its
+// map is low background noise with a few blobs) is not. The present object gets a TF frame, a
+// finite, positive-definite covariance (on ~objects and on its ~pose/box topic) and an uncertainty
+// ellipsoid; the absent one gets no TF frame, no ~poses entry and no marker, and ~objects and the
+// ~estimate service list it as rejected, with a reason.
 #include <geometry_msgs/PoseArray.h>
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <gtest/gtest.h>
@@ -24,7 +23,7 @@ namespace {
 constexpr double kFirstOutputTimeout = 120;  // seconds: includes preparing uncached models
 const std::string kNode = "/stocs";
 const std::string kFrame = "camera_optical_frame";
-const std::vector<std::string> kAbsent = {"confused", "noise"};
+const std::vector<std::string> kAbsent = {"noise"};
 
 using Covariance = Eigen::Matrix<double, 6, 6, Eigen::RowMajor>;
 
