@@ -5,9 +5,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <numeric>
 
+#include "stocs/eval/confidence_metrics.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -74,42 +73,21 @@ LogisticModel fitLogistic(const Eigen::MatrixXd& features, const Eigen::VectorXd
 ProbabilityFit probabilityFit(const std::vector<double>& probabilities,
                               const std::vector<int>& labels) {
   const size_t n = probabilities.size();
-  ProbabilityFit fit;
   if (n == 0 || labels.size() != n) {
     throw InputError(
         fmt::format("probability fit: {} probabilities and {} labels", n, labels.size()));
   }
-  constexpr int kBins = 10;
-  std::vector<double> bin_p(kBins, 0), bin_y(kBins, 0), bin_n(kBins, 0);
+  ProbabilityFit fit;
+  std::vector<ScoredTarget> poses;
   for (size_t i = 0; i < n; ++i) {
     const double p = std::clamp(probabilities[i], 1e-12, 1 - 1e-12);
     fit.log_loss -= labels[i] ? std::log(p) : std::log(1 - p);
-    const int b = std::min(kBins - 1, static_cast<int>(probabilities[i] * kBins));
-    bin_p[b] += probabilities[i];
-    bin_y[b] += labels[i];
-    bin_n[b] += 1;
+    poses.push_back({true, probabilities[i], labels[i] != 0, false});
   }
   fit.log_loss /= static_cast<double>(n);
-  for (int b = 0; b < kBins; ++b) fit.calibration_error += std::abs(bin_p[b] - bin_y[b]) / n;
-  // ROC AUC by ranks (Mann-Whitney U), ties sharing their mean rank.
-  std::vector<size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](size_t a, size_t b) { return probabilities[a] < probabilities[b]; });
-  double positive_ranks = 0, positives = 0;
-  for (size_t i = 0; i < n;) {
-    size_t j = i;
-    while (j < n && probabilities[order[j]] == probabilities[order[i]]) ++j;
-    const double rank = (static_cast<double>(i + j) + 1) / 2;  // mean of ranks i+1 .. j
-    for (size_t k = i; k < j; ++k) {
-      if (labels[order[k]]) positive_ranks += rank, positives += 1;
-    }
-    i = j;
-  }
-  const double negatives = static_cast<double>(n) - positives;
-  fit.roc_auc = positives == 0 || negatives == 0
-                    ? std::numeric_limits<double>::quiet_NaN()
-                    : (positive_ranks - positives * (positives + 1) / 2) / (positives * negatives);
+  const ConfidenceMetrics metrics = confidenceMetrics(poses, 0.5);
+  fit.calibration_error = metrics.ece;
+  fit.roc_auc = metrics.roc_auc;
   return fit;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "child_process.h"
+#include "stocs/estimation/pose_confidence.h"
 #include "stocs/eval/dataset_evaluation.h"
 
 namespace stocs::tools {
@@ -56,7 +57,8 @@ struct BenchData {
   std::string command;             ///< the command line, for the report
   bool warm = true;                ///< every run began with an untimed estimate (--warm-up)
   int repeats = 1;                 ///< every image processed this many times (--repeats)
-  double min_confidence = 0.5;     ///< score threshold of the confidence columns
+  /// Score threshold of the confidence columns: the estimation's default min_confidence.
+  double min_confidence = ConfidenceParams().min_confidence;
 };
 
 /// Writes into `out`: results.md, summary.csv, targets.csv, threshold_sweep.csv, budget_sweep.csv,

@@ -28,7 +28,7 @@ struct EvalOptions {
   std::vector<int> scenes;
   std::vector<int> objects;
   std::string prob;
-  double min_confidence = 0.5;
+  double min_confidence = ConfidenceParams().min_confidence;  ///< the estimation's default
   std::string markdown;
   std::string csv;
   std::string targets_csv;

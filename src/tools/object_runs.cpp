@@ -13,7 +13,7 @@
 namespace stocs::tools {
 namespace {
 
-constexpr int kFixedColumns = 8;  // scene_id to hypotheses
+constexpr int kFixedColumns = 8;                                          // scene_id to hypotheses
 constexpr int kColumns = kFixedColumns + ConfidenceEvidence::kCount + 1;  // then the covariance
 
 /// The row's numbers and its covariance (the last column: 36 numbers, row by row, separated by
@@ -48,10 +48,11 @@ void writeObjectRuns(const std::filesystem::path& file, const std::vector<Object
       "covariance\n",
       fmt::join(ConfidenceEvidence::names(), ","));
   for (const ObjectRun& r : runs) {
-    text += fmt::format("{},{},{},{},{:.6f},{:.6f},{},{},{:.5f},{:.5f},{:.9g}\n", r.target.scene_id,
-                        r.target.im_id, r.target.obj_id, r.found ? 1 : 0, r.seconds, r.cpu_seconds,
-                        r.segment_points, r.hypotheses, fmt::join(r.evidence.features(), ","),
-                        r.confidence, fmt::join(r.covariance.data(), r.covariance.data() + 36, " "));
+    text +=
+        fmt::format("{},{},{},{},{:.6f},{:.6f},{},{},{:.5f},{:.5f},{:.9g}\n", r.target.scene_id,
+                    r.target.im_id, r.target.obj_id, r.found ? 1 : 0, r.seconds, r.cpu_seconds,
+                    r.segment_points, r.hypotheses, fmt::join(r.evidence.features(), ","),
+                    r.confidence, fmt::join(r.covariance.data(), r.covariance.data() + 36, " "));
   }
   writeTextFile(file, text);
 }
