@@ -122,10 +122,11 @@ as_written() {
 }
 
 # spawn COMMAND LOG: in the background, from the repository's root, as the leader of a process group
-# of its own (its pid is $!).
+# of its own (its pid is $!), with Ctrl-C's default action as in a terminal: a script started in
+# the background inherits SIGINT ignored, and rosbag play then fails on Ctrl-C with a TypeError.
 spawn() {
   : > "$2"
-  (cd "$REPO" && exec setsid bash -c "$1") > "$2" 2>&1 &
+  (cd "$REPO" && exec setsid env --default-signal=INT bash -c "$1") > "$2" 2>&1 &
 }
 
 # stop_group PID TARGET: Ctrl-C to TARGET (PID alone, or -PID: the whole process group PID leads,
