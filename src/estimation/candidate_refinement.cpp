@@ -133,7 +133,8 @@ std::vector<InstancePose> selectInstances(const std::vector<Hypothesis>& ranked,
     instance.score = instance.lcp.score;
     instance.refined = h.refined;
     instance.region = h.region;
-    instance.covariance = poseCovariance(c.model, c.icp, h.pose, h.region, &c.scorer);
+    instance.covariance =
+        poseCovariance(c.model, c.icp, h.pose, h.region, &c.scorer, c.near_symmetries);
   }
   return instances;
 }

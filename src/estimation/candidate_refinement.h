@@ -10,6 +10,7 @@
 #include "stocs/estimation/icp_refiner.h"
 #include "stocs/estimation/lcp_scorer.h"
 #include "stocs/estimation/stocs_estimator.h"
+#include "stocs/model/near_symmetries.h"
 
 namespace stocs {
 
@@ -31,6 +32,7 @@ inline bool higherScore(const Hypothesis& a, const Hypothesis& b) {
 /// frame's free-space check (null without one).
 struct RefinementContext {
   const ObjectModel& model;
+  const std::vector<NearSymmetry>& near_symmetries;  ///< of the model, for the covariance
   const IcpRefiner* icp;
   const LcpScorer& scorer;
   const FreeSpaceCheck* free_space;

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/silhouette_support.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -33,7 +34,8 @@ namespace {
 /// The evidence of every instance that needs the frame (see ConfidenceEvidence), then its verdict.
 /// Without `surface` (no camera) nothing confirms a pose.
 void judgeInstances(PoseEstimate& result, const ObjectModel& model, const FreeSpaceCheck* surface,
-                    const cv::Mat& probability, const ConfidenceParams& params) {
+                    const CameraIntrinsics* camera, const cv::Mat& probability,
+                    const ConfidenceParams& params) {
   for (InstancePose& pose : result.instances) {
     ConfidenceEvidence& e = pose.evidence;
     if (pose.lcp.facing > 0) {
@@ -48,6 +50,7 @@ void judgeInstances(PoseEstimate& result, const ObjectModel& model, const FreeSp
     if (c.confirmed > 0) {
       e.map_support = static_cast<float>(c.support / c.confirmed);
     }
+    if (camera) e.silhouette = silhouetteShare(model, pose.pose, *camera, probability);
     judgePose(pose, params);
   }
 }
@@ -77,7 +80,7 @@ PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const c
   const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
   PoseEstimate result = StocsEstimator(model, params.stocs)
                             .estimate(segment, rank_by_free_space ? &*surface : nullptr);
-  judgeInstances(result, model.model, surface ? &*surface : nullptr, probability,
+  judgeInstances(result, model.model, surface ? &*surface : nullptr, camera, probability,
                  params.confidence);
   result.segment_points = segment.size();
   result.stages.segment = segment_seconds;

@@ -21,20 +21,20 @@ std::string spoken(const char* name) {
 }  // namespace
 
 const std::array<const char*, ConfidenceEvidence::kCount>& ConfidenceEvidence::names() {
-  static const std::array<const char*, kCount> names = {"surface_confirmed", "free_space",
-                                                        "map_support", "matched", "consensus"};
+  static const std::array<const char*, kCount> names = {
+      "surface_confirmed", "free_space", "map_support", "matched", "consensus", "silhouette"};
   return names;
 }
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::features() const {
   Eigen::Matrix<double, kCount, 1> f;
-  f << surface_confirmed, free_space, map_support, matched, consensus;
+  f << surface_confirmed, free_space, map_support, matched, consensus, silhouette;
   return f;
 }
 
 ConfidenceEvidence ConfidenceEvidence::fromFeatures(const Eigen::Matrix<double, kCount, 1>& f) {
   const Eigen::Matrix<float, kCount, 1> v = f.cast<float>();
-  return {v[0], v[1], v[2], v[3], v[4]};
+  return {v[0], v[1], v[2], v[3], v[4], v[5]};
 }
 
 const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
@@ -53,6 +53,8 @@ const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
                "weight: share of the camera-facing model points the segment matches (LCP)")
           .add(&ConfidenceParams::consensus, "consensus", "", weight,
                "weight: share of the 8 best bases that agree with the pose")
+          .add(&ConfidenceParams::silhouette, "silhouette", "", weight,
+               "weight: share of the map's mass around the pose inside its silhouette")
           .add(&ConfidenceParams::min_confidence, "min_confidence", "", ParamRange::closed(0, 1),
                "poses below this confidence are rejected (not published or written)")
           .flag("--min-confidence");
@@ -65,7 +67,7 @@ void ConfidenceParams::validate() const {
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceParams::weights() const {
   Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
-  w << surface_confirmed, free_space, map_support, matched, consensus;
+  w << surface_confirmed, free_space, map_support, matched, consensus, silhouette;
   return w;
 }
 

@@ -33,11 +33,29 @@ PoseCovariance atOrigin(const Eigen::Matrix<double, 6, 6>& about_centre,
   return 0.5 * (moved + moved.transpose());
 }
 
-PoseCovariance fromInformation(const Eigen::Matrix<double, 6, 6>& information,
-                               const Eigen::Isometry3f& pose, const Eigen::Vector3d& centre) {
+/// The variance (w, v order, about the centre) that near symmetries add: each turn's angle at
+/// kNearSymmetrySigmas standard deviations about its axis in the camera frame, and its shift as
+/// far in position, in every direction.
+Eigen::Matrix<double, 6, 6> nearSymmetrySpread(const std::vector<NearSymmetry>& near_symmetries,
+                                               const Eigen::Isometry3f& pose) {
+  Eigen::Matrix<double, 6, 6> spread = Eigen::Matrix<double, 6, 6>::Zero();
+  for (const NearSymmetry& s : near_symmetries) {
+    const Eigen::Vector3d axis = (pose.linear() * s.axis).cast<double>().normalized();
+    const double std = s.angle / kNearSymmetrySigmas;
+    spread.topLeftCorner<3, 3>() += std * std * axis * axis.transpose();
+    const double shift_std = s.shift / kNearSymmetrySigmas;
+    spread.bottomRightCorner<3, 3>() += shift_std * shift_std * Eigen::Matrix3d::Identity();
+  }
+  return spread;
+}
+
+PoseCovariance fromInformation(
+    const Eigen::Matrix<double, 6, 6>& information, const Eigen::Isometry3f& pose,
+    const Eigen::Vector3d& centre,
+    const Eigen::Matrix<double, 6, 6>& spread = Eigen::Matrix<double, 6, 6>::Zero()) {
   const Eigen::LLT<Eigen::Matrix<double, 6, 6>> llt(information);
   if (llt.info() != Eigen::Success) return PoseCovariance::Constant(NAN);
-  return atOrigin(llt.solve(Eigen::Matrix<double, 6, 6>::Identity()),
+  return atOrigin(llt.solve(Eigen::Matrix<double, 6, 6>::Identity()) + spread,
                   pose.translation().cast<double>(), centre);
 }
 
@@ -49,7 +67,7 @@ PoseCovariance priorCovariance(const Eigen::Isometry3f& pose, const Eigen::Vecto
 }
 
 PoseCovariance poseCovariance(const PointToPlaneSystem& system, const Eigen::Isometry3f& pose,
-                              double diameter) {
+                              double diameter, const std::vector<NearSymmetry>& near_symmetries) {
   const PoseCovariance prior = priorCovariance(pose, system.centre, diameter);
   if (system.used <= kParameters) return prior;
   // Weighted least squares with var(r_i) = sigma^2 / w_i: sigma^2 from the weighted residuals.
@@ -57,16 +75,19 @@ PoseCovariance poseCovariance(const PointToPlaneSystem& system, const Eigen::Iso
                                  kMinResidualStd * kMinResidualStd) *
                         kCorrelationFactor;
   const PoseCovariance covariance =
-      fromInformation(system.jtj / sigma2 + priorInformation(diameter), pose, system.centre);
+      fromInformation(system.jtj / sigma2 + priorInformation(diameter), pose, system.centre,
+                      nearSymmetrySpread(near_symmetries, pose));
   return covariance.allFinite() ? covariance : prior;
 }
 
 PoseCovariance poseCovariance(const ObjectModel& model, const IcpRefiner* icp,
-                              const Eigen::Isometry3f& pose, int region, const LcpScorer* near) {
+                              const Eigen::Isometry3f& pose, int region, const LcpScorer* near,
+                              const std::vector<NearSymmetry>& near_symmetries) {
   if (!icp) {
     return priorCovariance(pose, (pose * sampleCentre(model)).cast<double>(), model.diameter);
   }
-  return poseCovariance(icp->system(model, pose, region, near), pose, model.diameter);
+  return poseCovariance(icp->system(model, pose, region, near), pose, model.diameter,
+                        near_symmetries);
 }
 
 }  // namespace stocs

@@ -244,7 +244,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   SegmentIndexes indexes;
   buildIndexes(segment, params_, threads, indexes);
   const IcpRefiner* icp = indexes.icp ? &*indexes.icp : nullptr;
-  const RefinementContext refinement{model_.model, icp, *indexes.scorer, free_space};
+  const RefinementContext refinement{model_.model, model_.near_symmetries, icp, *indexes.scorer,
+                                     free_space};
   EarlyRefinements early(
       params_.bases,
       icp && params_.instances == 1 && static_cast<size_t>(params_.bases) <= refinedBases(),

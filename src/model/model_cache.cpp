@@ -175,6 +175,7 @@ PreparedModel prepareUncached(const std::string& model_file, float unit_scale,
   PreparedModel m;
   m.model = prepareModel(loadMesh(model_file, unit_scale), params.sampling);
   m.ppf_map = PpfHashMap::build(m.model, params.ppf);
+  m.near_symmetries = findNearSymmetries(m.model);
   return m;
 }
 
@@ -235,6 +236,7 @@ PreparedModel ModelCache::load(const std::string& model_file, float unit_scale,
   if (existed) {
     try {
       PreparedModel m = readEntry(r.entry, key);
+      m.near_symmetries = findNearSymmetries(m.model);
       r.outcome = CacheOutcome::kLoaded;
       return m;
     } catch (const InputError& e) {

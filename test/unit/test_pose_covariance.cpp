@@ -1,7 +1,7 @@
 // The pose covariance on segments made of a model's own camera-facing samples with noise along
 // their normals: finite and positive definite, small where the surface pins the pose, the prior's
-// where it does not (about a cylinder's axis), scaled with the noise, and the prior's whenever the
-// data give nothing usable.
+// where it does not (about a cylinder's axis) or the model almost repeats itself (a near
+// symmetry), scaled with the noise, and the prior's whenever the data give nothing usable.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -78,6 +78,23 @@ TEST(PoseCovariance, RotationAboutACylindersAxisKeepsThePriorsVariance) {
   const Eigen::Vector3d across = axis.unitOrthogonal();
   EXPECT_GT(axis.dot(rotation * axis), 1.0);  // a std above 1 rad: the data hardly say
   EXPECT_LT(across.dot(rotation * across), 0.05 * 0.05);
+}
+
+TEST(PoseCovariance, ANearSymmetryPutsItsTurnAndShiftAtTwoStandardDeviations) {
+  const ObjectModel model = prepareModel(asymmetricMesh(), ModelSamplingParams{});
+  const Eigen::Isometry3f pose = test::viewingPose(0.8f);
+  const SoftSegment segment = noisySamples(model, pose, 0.001f);
+  const IcpRefiner icp(segment, IcpParams{});
+  const NearSymmetry quarter{Eigen::Vector3f::UnitX(), static_cast<float>(M_PI / 2), 0.004f};
+  const PoseCovariance c = poseCovariance(model, &icp, pose, -1, nullptr, {quarter});
+  expectPositiveDefinite(c);
+  const Eigen::Matrix3d rotation = c.bottomRightCorner<3, 3>();
+  const Eigen::Vector3d axis = (pose.linear() * Eigen::Vector3f::UnitX()).cast<double>();
+  EXPECT_NEAR(std::sqrt(axis.dot(rotation * axis)), M_PI / 4, 0.01);
+  // Across the axis the data still pin the rotation; the position is known to about the shift.
+  const Eigen::Vector3d across = (pose.linear() * Eigen::Vector3f::UnitY()).cast<double>();
+  EXPECT_LT(across.dot(rotation * across), 0.05 * 0.05);
+  for (int i = 0; i < 3; ++i) EXPECT_GT(std::sqrt(c(i, i)), 0.002) << "translation " << i;
 }
 
 TEST(PoseCovariance, ScalesWithTheResidualNoise) {

@@ -31,9 +31,12 @@ struct ConfidenceEvidence {
   float matched = 0;
   /// Of the best bases (up to kConsensusBases), the share that put the object in the same place.
   float consensus = 0;
+  /// Of the map's mass around the pose's silhouette, the share inside it (silhouetteShare): a pose
+  /// of a smaller object on a larger region explains only part of it.
+  float silhouette = 0;
 
   static constexpr int kConsensusBases = 8;
-  static constexpr int kCount = 5;
+  static constexpr int kCount = 6;
   /// Feature names, in the order of features() (CSV columns, calibration output).
   static const std::array<const char*, kCount>& names();
   Eigen::Matrix<double, kCount, 1> features() const;
@@ -43,12 +46,13 @@ struct ConfidenceEvidence {
 /// The logistic model: confidence = sigmoid(intercept + sum of weight * feature).
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -6.1716f;
-  float surface_confirmed = 2.7202f;
-  float free_space = -3.8818f;
-  float map_support = 4.4065f;
-  float matched = 2.2907f;
-  float consensus = 1.951f;
+  float intercept = -6.7429f;
+  float surface_confirmed = 2.8024f;
+  float free_space = -4.0402f;
+  float map_support = 4.0654f;
+  float matched = 2.2944f;
+  float consensus = 1.4401f;
+  float silhouette = 1.6011f;
   /// Poses below this confidence are rejected: not published, not written to results.
   float min_confidence = 0.4f;
 

@@ -20,12 +20,17 @@
 // diameter, the rotation to about pi in each axis) keeps their variance that large instead of
 // letting it be infinite, or falsely small by clipping. For an object with discrete symmetries the
 // covariance is of the error to the nearest symmetric equivalent of the true pose: the data cannot
-// tell the equivalents apart.
+// tell the equivalents apart. A near symmetry (near_symmetries.h) is a second pose the data barely
+// tells apart; the rotation about its axis and the position get variances that put the other pose
+// at kNearSymmetrySigmas standard deviations.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <vector>
+
 #include "stocs/estimation/icp_refiner.h"
+#include "stocs/model/near_symmetries.h"
 #include "stocs/model/object_model.h"
 
 namespace stocs {
@@ -37,6 +42,8 @@ using PoseCovariance = Eigen::Matrix<double, 6, 6>;
 constexpr double kCorrelationFactor = 10.0;
 /// Lowest residual standard deviation believed, metres: below it the residual is sampling luck.
 constexpr double kMinResidualStd = 0.0005;
+/// A near symmetry's turn, in standard deviations of the rotation about its axis.
+constexpr double kNearSymmetrySigmas = 2.0;
 
 /// The covariance of the prior alone, at `pose` (translation std `diameter` at the model's centre
 /// `centre`, camera frame, rotation std pi), in the convention above.
@@ -44,15 +51,18 @@ PoseCovariance priorCovariance(const Eigen::Isometry3f& pose, const Eigen::Vecto
                                double diameter);
 
 /// The covariance of `pose` from its normal equations (IcpRefiner::system at that pose), in the
-/// convention above: the prior's where the system has fewer than 7 rows or gives a non-finite
-/// result, so the covariance is always finite, symmetric and positive definite.
+/// convention above, widened about the model's near symmetries (model frame): the prior's where
+/// the system has fewer than 7 rows or gives a non-finite result, so the covariance is always
+/// finite, symmetric and positive definite.
 PoseCovariance poseCovariance(const PointToPlaneSystem& system, const Eigen::Isometry3f& pose,
-                              double diameter);
+                              double diameter,
+                              const std::vector<NearSymmetry>& near_symmetries = {});
 
 /// The covariance of `pose` against the refiner's segment region `region` (one correspondence
 /// pass, `near` as in IcpRefiner::refine), or the prior's without a refiner (ICP disabled).
 PoseCovariance poseCovariance(const ObjectModel& model, const IcpRefiner* icp,
                               const Eigen::Isometry3f& pose, int region,
-                              const LcpScorer* near = nullptr);
+                              const LcpScorer* near = nullptr,
+                              const std::vector<NearSymmetry>& near_symmetries = {});
 
 }  // namespace stocs

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include "stocs/model/near_symmetries.h"
 #include "stocs/model/object_model.h"
 #include "stocs/model/ppf_hash_map.h"
 #include "stocs/util/param_set.h"
@@ -29,6 +30,8 @@ struct ModelPreparationParams {
 struct PreparedModel {
   ObjectModel model;
   PpfHashMap ppf_map;
+  /// findNearSymmetries(model): computed on loading, not stored in the cache.
+  std::vector<NearSymmetry> near_symmetries;
 };
 
 /// Loads and prepares a model without any cache.
