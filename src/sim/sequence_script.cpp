@@ -34,11 +34,18 @@ const MeshData& occluderMesh() {
 
 const cv::Vec3b kOccluderColour(110, 140, 190);
 
-/// Where an event starts and how long it lasts, for the check that it fits.
+/// Where an event starts and how long it lasts (0 frames: no such event).
 struct EventWindow {
-  const char* name;
+  SequenceEventKind kind;
   int start, frames;
 };
+
+std::vector<EventWindow> eventWindows(const SequenceParams& p) {
+  return {{SequenceEventKind::kPush, p.push_start, p.push_frames},
+          {SequenceEventKind::kLift, p.lift_start, p.lift_frames},
+          {SequenceEventKind::kRemoval, p.removal_start, p.removal_frames},
+          {SequenceEventKind::kOcclusion, p.occlusion_start, p.occlusion_frames}};
+}
 
 }  // namespace
 
@@ -108,15 +115,13 @@ const ParamSet<SequenceParams>& SequenceParams::schema() {
 
 void SequenceParams::validate() const {
   schema().validate(*this, [](const ParamInfo& info) { return "synth: sequence." + info.key; });
-  for (const EventWindow& w :
-       {EventWindow{"push", push_start, push_frames}, EventWindow{"lift", lift_start, lift_frames},
-        EventWindow{"removal", removal_start, removal_frames},
-        EventWindow{"occlusion", occlusion_start, occlusion_frames}}) {
+  for (const EventWindow& w : eventWindows(*this)) {
     if (w.frames > 0 && w.start + w.frames > frames) {
       throw InputError(fmt::format(
           "synth: the {0} (--{0}-start {1}, --{0}-frames {2}) ends at frame {3}, after the "
           "sequence's last frame {4} (--frames {5})",
-          w.name, w.start, w.frames, w.start + w.frames - 1, frames - 1, frames));
+          sequenceEventName(w.kind), w.start, w.frames, w.start + w.frames - 1, frames - 1,
+          frames));
     }
   }
 }
@@ -133,19 +138,13 @@ SequenceScript::SequenceScript(std::vector<PlacedObject> objects, std::vector<cv
   for (size_t i = candidates.size(); i > 1; --i) {
     std::swap(candidates[i - 1], candidates[uniformIndex(rng, static_cast<uint32_t>(i))]);
   }
-  const EventWindow windows[] = {{"push", params.push_start, params.push_frames},
-                                 {"lift", params.lift_start, params.lift_frames},
-                                 {"removal", params.removal_start, params.removal_frames},
-                                 {"occlusion", params.occlusion_start, params.occlusion_frames}};
-  const SequenceEventKind kinds[] = {SequenceEventKind::kPush, SequenceEventKind::kLift,
-                                     SequenceEventKind::kRemoval, SequenceEventKind::kOcclusion};
-  for (int k = 0; k < 4 && !candidates.empty(); ++k) {
-    if (windows[k].frames == 0) continue;
+  for (const EventWindow& w : eventWindows(params)) {
+    if (w.frames == 0 || candidates.empty()) continue;
     const int object = candidates[events_.size() % candidates.size()];
-    addEvent(kinds[k], object, windows[k].start, windows[k].frames);
-    if (kinds[k] == SequenceEventKind::kPush) {
+    addEvent(w.kind, object, w.start, w.frames);
+    if (w.kind == SequenceEventKind::kPush) {
       motions_.back() = clearMotion(object, params.push_distance, 0, rng);
-    } else if (kinds[k] == SequenceEventKind::kLift) {
+    } else if (w.kind == SequenceEventKind::kLift) {
       motions_.back() = clearMotion(object, params.lift_distance, params.lift_height, rng);
     }
   }
