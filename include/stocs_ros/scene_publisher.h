@@ -1,12 +1,13 @@
 #pragma once
-// Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
-// with camera_info, the colour image, per-object probability images (or one multi-channel image, as
-// the estimator's config says; the dataset's prob/ maps or simulated ones, as ~probability_source
-// says), the boundary map, and the ground truth as TF frames gt_<object> and, while someone
-// subscribes, as rviz markers (ground_truth_markers.h).
-// Every message of one frame carries the same stamp: the time it is published, taken once all of
-// them are built, so that latencies measured from it (scripts/bench_latency.sh) are those of the
-// receiver and not of this player's own conversions.
+// Plays a BOP dataset as ROS sensor topics at a fixed rate (a generated or real sequence's own,
+// from scene_events.json, unless ~rate says otherwise), frames in scene then image id order: the
+// organized cloud, the depth image with camera_info, the colour image, per-object probability
+// images (or one multi-channel image, as the estimator's config says; the dataset's prob/ maps or
+// simulated ones, as ~probability_source says), the boundary map, and the ground truth as TF frames
+// gt_<object> and, while someone subscribes, as rviz markers (ground_truth_markers.h). Every
+// message of one frame carries the same stamp: the time it is published, taken once all of them are
+// built, so that latencies measured from it (scripts/bench_latency.sh) are those of the receiver
+// and not of this player's own conversions.
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -63,6 +64,7 @@ class ScenePublisher {
   bool loop_ = true;
   std::vector<FrameRef> frames_;
   size_t next_ = 0;
+  int passes_ = 0;  ///< times every frame was played (with ~loop)
   std::map<int, std::map<int, stocs::BopFrameCamera>> cameras_;  // by scene, image
   std::map<int, std::map<int, std::vector<stocs::BopGtInstance>>> ground_truth_;
 

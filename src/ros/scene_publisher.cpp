@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
+#include "stocs/sim/sequence_info.h"
 #include "stocs/util/error.h"
 #include "stocs_ros/cloud_conversion.h"
 
@@ -57,6 +58,18 @@ std::unique_ptr<stocs::ProbabilitySource> probabilitySource(const ros::NodeHandl
   }
 }
 
+/// ~rate, or where it is 0 (the default) the rate of the played sequences (their
+/// scene_events.json), else 1 Hz.
+double playbackRate(const ros::NodeHandle& pnh, const stocs::BopDataset& dataset,
+                    const std::vector<int>& scenes) {
+  double rate = pnh.param("rate", 0.0);
+  if (rate == 0) rate = stocs::sequenceRate(dataset, scenes).value_or(1.0);
+  if (!(rate > 0 && rate <= 100)) {
+    throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
+  }
+  return rate;
+}
+
 sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
                                    const std_msgs::Header& header) {
   sensor_msgs::CameraInfo info;
@@ -82,10 +95,6 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
       probability_encoding_(pnh.param<std::string>("probability_encoding", "mono16")),
       publish_boundary_(pnh.param("boundary", true)),
       loop_(pnh.param("loop", true)) {
-  const double rate = pnh.param("rate", 1.0);
-  if (!(rate > 0 && rate <= 100)) {
-    throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
-  }
   if (probability_encoding_ != "mono16" && probability_encoding_ != "mono8" &&
       probability_encoding_ != "32FC1") {
     throw InputError(
@@ -114,6 +123,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
                                  dataset_.root().string()));
   }
   for (const ObjectConfig& o : config_.objects) object_ids_.push_back(o.id);
+  const double rate = playbackRate(pnh, dataset_, scenes);
 
   cloud_ = pnh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
   depth_ = pnh_.advertise<sensor_msgs::Image>("depth", 2);
@@ -144,6 +154,9 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
       return;
     }
     next_ = 0;
+    // Stamps are the time of publishing, so they keep increasing; the scene itself starts over.
+    ROS_INFO("scene_publisher: pass %d: back to scene %d image %d (stamps keep increasing)",
+             ++passes_ + 1, frames_[0].scene, frames_[0].image);
   }
   const FrameRef ref = frames_[next_++];
   try {
