@@ -3,7 +3,9 @@
 // the source untouched; the same maps for a seed; bad requests refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <opencv2/imgcodecs.hpp>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
@@ -68,6 +70,36 @@ TEST(SimulatedMaps, EveryTargetGetsAMapAndTheImagesATime) {
   for (const BopTarget& t : targets) {
     EXPECT_EQ(readTextFile(ds.probabilityPath(0, t.im_id, t.obj_id)),
               readTextFile(BopDataset(again).probabilityPath(0, t.im_id, t.obj_id)));
+  }
+}
+
+TEST(SimulatedMaps, Ycbv0000BecomesAFiveFrameSequenceAndIsLeftAsItWas) {
+  STOCS_REQUIRE_DATASETS(datasets);
+  const fs::path source = datasets / "ycbv-0000";
+  const fs::path out = test::scratchDir("simmaps_ycbv");
+  writeSimulatedMapsDataset(source, out, {});
+  EXPECT_FALSE(fs::exists(source / "test" / "000000" / "prob"));
+  EXPECT_FALSE(fs::exists(source / "test_targets_bop19.json"));
+  const BopDataset ds(out);
+  const SequenceInfo info = readSequenceInfo(sequenceInfoPath(ds.sceneDir(0)));
+  ASSERT_EQ(info.stamps.size(), 5u);
+  EXPECT_DOUBLE_EQ(info.stamps.begin()->second, 0);
+  EXPECT_EQ(info.stamps.begin()->first, 1);  // YCB-Video's ids start at 1
+  EXPECT_NEAR(info.stamps.at(5), 4 / 30.0, 1e-6);
+  // Three objects per frame and two absent ones, each with a map that marks a present object.
+  const std::vector<BopTarget> targets = readBopTargets(out / "test_targets_bop19.json");
+  ASSERT_EQ(targets.size(), 25u);
+  const std::map<int, std::vector<BopGtInstance>> gt = ds.sceneGroundTruth(0);
+  for (const BopTarget& t : targets) {
+    const cv::Mat probability = ds.loadProbability(0, t.im_id, t.obj_id);
+    if (t.inst_count == 0) continue;
+    const int instance = static_cast<int>(
+        std::find_if(gt.at(t.im_id).begin(), gt.at(t.im_id).end(),
+                     [&](const BopGtInstance& g) { return g.obj_id == t.obj_id; }) -
+        gt.at(t.im_id).begin());
+    const cv::Mat mask =
+        cv::imread(ds.maskVisibPath(0, t.im_id, instance).string(), cv::IMREAD_GRAYSCALE);
+    EXPECT_GT(cv::mean(probability, mask)[0], 0.5) << "image " << t.im_id << " object " << t.obj_id;
   }
 }
 
