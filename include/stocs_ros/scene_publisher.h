@@ -64,7 +64,7 @@ class ScenePublisher {
   bool loop_ = true;
   std::vector<FrameRef> frames_;
   size_t next_ = 0;
-  int passes_ = 0;  ///< times every frame was played (with ~loop)
+  int pass_ = 1;  ///< passes over the frames so far, this one included (more with ~loop)
   std::map<int, std::map<int, stocs::BopFrameCamera>> cameras_;  // by scene, image
   std::map<int, std::map<int, std::vector<stocs::BopGtInstance>>> ground_truth_;
 

@@ -156,7 +156,7 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
     next_ = 0;
     // Stamps are the time of publishing, so they keep increasing; the scene itself starts over.
     ROS_INFO("scene_publisher: pass %d: back to scene %d image %d (stamps keep increasing)",
-             ++passes_ + 1, frames_[0].scene, frames_[0].image);
+             ++pass_, frames_[0].scene, frames_[0].image);
   }
   const FrameRef ref = frames_[next_++];
   try {
