@@ -20,9 +20,9 @@ struct CameraPathLimits {
 
 /// `frames` camera poses (table frame to camera optical frame, as randomCameraPose) at
 /// `limits.rate_hz`, within the layout's distance and elevation ranges. Consecutive poses differ by
-/// at most translation_speed / rate_hz metres and rotation_speed / rate_hz radians; at least one of
-/// the two limits is reached somewhere on the path unless both are 0 (a still camera). Phases and
-/// the start azimuth come from `rng`.
+/// at most translation_speed / rate_hz metres and rotation_speed / rate_hz radians, and the fastest
+/// step comes within about 1% of one of the limits; either limit at 0 holds the camera still.
+/// Phases and the start azimuth come from `rng`.
 std::vector<Eigen::Isometry3f> smoothCameraPath(const SceneLayoutParams& layout, int frames,
                                                 const CameraPathLimits& limits, Rng& rng);
 
