@@ -140,6 +140,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
       probabilities_.push_back(probability_nh.advertise<sensor_msgs::Image>(o.name, 2));
     }
   }
+  loadNext();
   timer_ = pnh_.createTimer(ros::Duration(1.0 / rate), &ScenePublisher::onTimer, this);
   ROS_INFO("scene_publisher: %zu frames of %s at %.2f Hz%s, probability maps '%s'", frames_.size(),
            dataset_.root().c_str(), rate, loop_ ? ", looping" : "",
@@ -147,12 +148,27 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
 }
 
 void ScenePublisher::onTimer(const ros::TimerEvent&) {
+  if (!pending_.valid()) {
+    timer_.stop();
+    ROS_INFO("scene_publisher: all %zu frames published", frames_.size());
+    return;
+  }
+  const FrameRef ref = pending_ref_;
+  try {
+    const BopFrame frame = pending_.get();
+    loadNext();  // while this one is published and until the next tick
+    warnOfMissingMap(ref, frame);
+    publish(ref, frame);
+  } catch (const InputError& e) {
+    if (!pending_.valid()) loadNext();
+    ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d skipped: %s", ref.scene, ref.image,
+                       e.what());
+  }
+}
+
+void ScenePublisher::loadNext() {
   if (next_ == frames_.size()) {
-    if (!loop_) {
-      timer_.stop();
-      ROS_INFO("scene_publisher: all %zu frames published", frames_.size());
-      return;
-    }
+    if (!loop_) return;
     next_ = 0;
     // Stamps are the time of publishing, so they keep increasing; the scene itself starts over.
     // Throttled: a five-frame sequence at 30 Hz starts over six times a second.
@@ -161,17 +177,12 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
         5.0, "scene_publisher: pass %d: back to scene %d image %d (stamps keep increasing)", pass_,
         frames_[0].scene, frames_[0].image);
   }
-  const FrameRef ref = frames_[next_++];
-  try {
-    const BopFrame frame =
-        loadBopFrame(dataset_, ref.scene, ref.image, cameras_[ref.scene][ref.image], object_ids_,
-                     *probability_source_);
-    warnOfMissingMap(ref, frame);
-    publish(ref, frame);
-  } catch (const InputError& e) {
-    ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d skipped: %s", ref.scene, ref.image,
-                       e.what());
-  }
+  pending_ref_ = frames_[next_++];
+  // One load at a time: the probability source is not for use from several threads at once.
+  pending_ = std::async(std::launch::async, [this, ref = pending_ref_] {
+    return loadBopFrame(dataset_, ref.scene, ref.image, cameras_.at(ref.scene).at(ref.image),
+                        object_ids_, *probability_source_);
+  });
 }
 
 namespace {
