@@ -33,8 +33,19 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_g
     --quiet
   DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   COMMENT "Generating the cluttered scene of the ROS tests")
+# A short sequence (24 frames at 320x240, every event a few frames long) for the scene publisher;
+# after the writer above, which empties the whole folder first.
+add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/sequence/test/000000/scene_events.json
+  COMMAND ${CMAKE_COMMAND} -E remove_directory ${STOCS_ROS_TEST_DATA}/sequence
+  COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/sequence --sequence --frames 24 --objects 3
+    --distractors 1 --width 320 --height 240 --fx 307.5 --fy 307.5 --cx 159.5 --cy 119.5
+    --push-start 2 --push-frames 4 --lift-start 6 --lift-frames 4 --removal-start 10
+    --removal-frames 6 --occlusion-start 17 --occlusion-frames 5 --seed 3 --quiet
+  DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
+  COMMENT "Generating the sequence of the ROS tests")
 add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml
-  ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json)
+  ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
+  ${STOCS_ROS_TEST_DATA}/sequence/test/000000/scene_events.json)
 add_dependencies(tests stocs_ros_test_data)
 
 # stocs_add_rostest_node(NAME SOURCES...): a gtest executable that rostest launch files run.
@@ -54,6 +65,7 @@ stocs_add_rostest_node(test_bad_config ${PROJECT_SOURCE_DIR}/test/ros/test_bad_c
 stocs_add_rostest_node(test_scene_poses ${PROJECT_SOURCE_DIR}/test/ros/test_scene_poses.cpp)
 stocs_add_rostest_node(test_soak ${PROJECT_SOURCE_DIR}/test/ros/test_soak.cpp)
 stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test_rejected_objects.cpp)
+stocs_add_rostest_node(test_sequence_playback ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_playback.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
@@ -69,6 +81,8 @@ add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
 add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)
+add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_sequence_playback scene_publisher stocs_ros_test_data)
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
 add_rostest(test/ros/soak.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_soak ${STOCS_ROS_TEST_DEPENDS})

@@ -1,17 +1,21 @@
 #pragma once
-// Plays a BOP dataset as ROS sensor topics at a fixed rate: the organized cloud, the depth image
-// with camera_info, the colour image, per-object probability images (or one multi-channel image, as
-// the estimator's config says; the dataset's prob/ maps or simulated ones, as ~probability_source
-// says), the boundary map, and the ground truth as TF frames gt_<object> and, while someone
-// subscribes, as rviz markers (ground_truth_markers.h).
-// Every message of one frame carries the same stamp: the time it is published, taken once all of
-// them are built, so that latencies measured from it (scripts/bench_latency.sh) are those of the
-// receiver and not of this player's own conversions.
+// Plays a BOP dataset as ROS sensor topics at a fixed rate (a generated or real sequence's own,
+// from scene_events.json, unless ~rate says otherwise), frames in scene then image id order: the
+// organized cloud, the depth image with camera_info, the colour image, per-object probability
+// images (or one multi-channel image, as the estimator's config says; the dataset's prob/ maps or
+// simulated ones, as ~probability_source says), the boundary map, and the ground truth as TF frames
+// gt_<object> and, while someone subscribes, as rviz markers (ground_truth_markers.h). Every
+// message of one frame carries the same stamp: the time it is published, taken once all of them are
+// built, so that latencies measured from it (scripts/bench_latency.sh) are those of the receiver
+// and not of this player's own conversions. Each frame is read from disk (mostly PNG decoding) in
+// a thread of its own while the one before is published and the timer waits, so that reading
+// does not add to the time between frames.
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <functional>
+#include <future>
 #include <map>
 #include <memory>
 #include <string>
@@ -37,7 +41,10 @@ class ScenePublisher {
     int image;
   };
 
+  /// Publishes the frame loaded since the last tick and starts loading the next.
   void onTimer(const ros::TimerEvent&);
+  /// Starts loading the next frame in a thread of its own (none after the last without ~loop).
+  void loadNext();
   /// Sets the stamp of a built message and publishes it.
   using Send = std::function<void(const ros::Time& stamp)>;
 
@@ -63,6 +70,7 @@ class ScenePublisher {
   bool loop_ = true;
   std::vector<FrameRef> frames_;
   size_t next_ = 0;
+  int pass_ = 1;  ///< passes over the frames so far, this one included (more with ~loop)
   std::map<int, std::map<int, stocs::BopFrameCamera>> cameras_;  // by scene, image
   std::map<int, std::map<int, std::vector<stocs::BopGtInstance>>> ground_truth_;
 
@@ -72,6 +80,9 @@ class ScenePublisher {
   ros::Publisher truth_markers_;
   GroundTruthMarkers truth_marker_builder_{config_};
   ros::Timer timer_;
+  /// The frame being loaded; last, so that it is waited for before anything it uses goes.
+  FrameRef pending_ref_{};
+  std::future<BopFrame> pending_;
 };
 
 }  // namespace stocs_ros

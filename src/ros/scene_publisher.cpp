@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 
+#include "stocs/sim/sequence_info.h"
 #include "stocs/util/error.h"
 #include "stocs_ros/cloud_conversion.h"
 
@@ -57,6 +58,18 @@ std::unique_ptr<stocs::ProbabilitySource> probabilitySource(const ros::NodeHandl
   }
 }
 
+/// ~rate, or where it is 0 (the default) the rate of the played sequences (their
+/// scene_events.json), else 1 Hz.
+double playbackRate(const ros::NodeHandle& pnh, const stocs::BopDataset& dataset,
+                    const std::vector<int>& scenes) {
+  double rate = pnh.param("rate", 0.0);
+  if (rate == 0) rate = stocs::sequenceRate(dataset, scenes).value_or(1.0);
+  if (!(rate > 0 && rate <= 100)) {
+    throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
+  }
+  return rate;
+}
+
 sensor_msgs::CameraInfo cameraInfo(const stocs::CameraIntrinsics& k,
                                    const std_msgs::Header& header) {
   sensor_msgs::CameraInfo info;
@@ -82,10 +95,6 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
       probability_encoding_(pnh.param<std::string>("probability_encoding", "mono16")),
       publish_boundary_(pnh.param("boundary", true)),
       loop_(pnh.param("loop", true)) {
-  const double rate = pnh.param("rate", 1.0);
-  if (!(rate > 0 && rate <= 100)) {
-    throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
-  }
   if (probability_encoding_ != "mono16" && probability_encoding_ != "mono8" &&
       probability_encoding_ != "32FC1") {
     throw InputError(
@@ -114,6 +123,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
                                  dataset_.root().string()));
   }
   for (const ObjectConfig& o : config_.objects) object_ids_.push_back(o.id);
+  const double rate = playbackRate(pnh, dataset_, scenes);
 
   cloud_ = pnh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
   depth_ = pnh_.advertise<sensor_msgs::Image>("depth", 2);
@@ -130,6 +140,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
       probabilities_.push_back(probability_nh.advertise<sensor_msgs::Image>(o.name, 2));
     }
   }
+  loadNext();
   timer_ = pnh_.createTimer(ros::Duration(1.0 / rate), &ScenePublisher::onTimer, this);
   ROS_INFO("scene_publisher: %zu frames of %s at %.2f Hz%s, probability maps '%s'", frames_.size(),
            dataset_.root().c_str(), rate, loop_ ? ", looping" : "",
@@ -137,25 +148,41 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
 }
 
 void ScenePublisher::onTimer(const ros::TimerEvent&) {
-  if (next_ == frames_.size()) {
-    if (!loop_) {
-      timer_.stop();
-      ROS_INFO("scene_publisher: all %zu frames published", frames_.size());
-      return;
-    }
-    next_ = 0;
+  if (!pending_.valid()) {
+    timer_.stop();
+    ROS_INFO("scene_publisher: all %zu frames published", frames_.size());
+    return;
   }
-  const FrameRef ref = frames_[next_++];
+  const FrameRef ref = pending_ref_;
   try {
-    const BopFrame frame =
-        loadBopFrame(dataset_, ref.scene, ref.image, cameras_[ref.scene][ref.image], object_ids_,
-                     *probability_source_);
+    const BopFrame frame = pending_.get();
+    loadNext();  // while this one is published and until the next tick
     warnOfMissingMap(ref, frame);
     publish(ref, frame);
   } catch (const InputError& e) {
+    if (!pending_.valid()) loadNext();
     ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d skipped: %s", ref.scene, ref.image,
                        e.what());
   }
+}
+
+void ScenePublisher::loadNext() {
+  if (next_ == frames_.size()) {
+    if (!loop_) return;
+    next_ = 0;
+    // Stamps are the time of publishing, so they keep increasing; the scene itself starts over.
+    // Throttled: a five-frame sequence at 30 Hz starts over six times a second.
+    ++pass_;  // not inside the macro, which skips its arguments when it throttles
+    ROS_INFO_THROTTLE(
+        5.0, "scene_publisher: pass %d: back to scene %d image %d (stamps keep increasing)", pass_,
+        frames_[0].scene, frames_[0].image);
+  }
+  pending_ref_ = frames_[next_++];
+  // One load at a time: the probability source is not for use from several threads at once.
+  pending_ = std::async(std::launch::async, [this, ref = pending_ref_] {
+    return loadBopFrame(dataset_, ref.scene, ref.image, cameras_.at(ref.scene).at(ref.image),
+                        object_ids_, *probability_source_);
+  });
 }
 
 namespace {

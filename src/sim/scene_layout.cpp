@@ -218,6 +218,20 @@ std::vector<PlacedObject> arrangeObjects(const std::vector<std::pair<int, MeshDa
   return placed;
 }
 
+bool footprintClear(const std::vector<PlacedObject>& objects, size_t moving,
+                    const Eigen::Isometry3f& pose, float gap) {
+  std::vector<Eigen::Vector3f> moved;
+  for (const Eigen::Vector3f& v : objects[moving].mesh.vertices) moved.push_back(pose * v);
+  const std::vector<cv::Point2f> footprint = footprintMm(moved);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (i == moving) continue;
+    std::vector<Eigen::Vector3f> other;
+    for (const Eigen::Vector3f& v : objects[i].mesh.vertices) other.push_back(objects[i].pose * v);
+    if (!separated(footprint, footprintMm(other), gap * 1000)) return false;
+  }
+  return true;
+}
+
 Eigen::Isometry3f randomCameraPose(const SceneLayoutParams& params, Rng& rng) {
   const float elevation =
       uniformIn(rng, params.min_elevation_deg, params.max_elevation_deg) * kPi / 180;
@@ -228,6 +242,10 @@ Eigen::Isometry3f randomCameraPose(const SceneLayoutParams& params, Rng& rng) {
       target + distance * Eigen::Vector3f(std::cos(elevation) * std::cos(azimuth),
                                           std::cos(elevation) * std::sin(azimuth),
                                           std::sin(elevation));
+  return cameraLookingAt(eye, target);
+}
+
+Eigen::Isometry3f cameraLookingAt(const Eigen::Vector3f& eye, const Eigen::Vector3f& target) {
   // Optical frame: z toward the target, x to the right, y down (towards the table at zero roll).
   const Eigen::Vector3f z = (target - eye).normalized();
   const Eigen::Vector3f x = z.cross(Eigen::Vector3f::UnitZ()).normalized();

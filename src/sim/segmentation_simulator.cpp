@@ -169,6 +169,30 @@ RandomLayout drawLayout(cv::Size size, const SegmentationNoiseParams& params, ui
   return layout;
 }
 
+/// `a` and `b` (fields of mean 0 and variance 1) blended by `weight`, at variance 1 again.
+cv::Mat blendFields(const cv::Mat& a, const cv::Mat& b, float weight) {
+  const float norm = std::sqrt((1 - weight) * (1 - weight) + weight * weight);
+  return (a * (1 - weight) + b * weight) / norm;
+}
+
+/// The layout of `seeds.from` blended into that of `seeds.to`; that of `seeds.from` alone, drawn
+/// once, at weight 0.
+RandomLayout drawLayout(cv::Size size, const SegmentationNoiseParams& params,
+                        const SegmentationSeeds& seeds) {
+  RandomLayout layout = drawLayout(size, params, seeds.from);
+  if (seeds.weight <= 0) return layout;
+  const RandomLayout to = drawLayout(size, params, seeds.to);
+  const float w = std::min(seeds.weight, 1.0f);
+  layout.missed_share += w * (to.missed_share - layout.missed_share);
+  layout.neighbour_share += w * (to.neighbour_share - layout.neighbour_share);
+  for (auto field :
+       {&RandomLayout::bleed_field, &RandomLayout::missed_field, &RandomLayout::neighbour_field,
+        &RandomLayout::lookalike_field, &RandomLayout::noise_field}) {
+    layout.*field = blendFields(layout.*field, to.*field, w);
+  }
+  return layout;
+}
+
 /// The object as found, bleeding over its outline by an amount that varies along it, at the
 /// preset's confidence, with its missed regions.
 cv::Mat foundObject(const cv::Mat& target, const RandomLayout& layout,
@@ -381,15 +405,28 @@ SegmentationNoiseParams segmentationPreset(const std::string& name) {
                                fmt::join(segmentationPresetNames(), ", ")));
 }
 
+SegmentationSeeds keyframeSeeds(uint64_t object_seed, int frame, int period) {
+  const int key = frame / period;
+  return {streamSeed(object_seed, key), streamSeed(object_seed, key + 1),
+          static_cast<float>(frame % period) / period};
+}
+
 cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
                              const SegmentationNoiseParams& params, uint64_t seed) {
+  return simulateSegmentation(scene, target_obj_id, params, SegmentationSeeds{seed, seed, 0});
+}
+
+cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
+                             const SegmentationNoiseParams& params,
+                             const SegmentationSeeds& seeds) {
   params.validate();
   checkScene(scene);
   const SceneMasks masks = sceneMasks(scene, target_obj_id);
-  const RandomLayout layout = drawLayout(scene.labels.size(), params, seed);
+  const RandomLayout layout = drawLayout(scene.labels.size(), params, seeds);
   const bool absent =
       std::find(scene.obj_ids.begin(), scene.obj_ids.end(), target_obj_id) == scene.obj_ids.end();
-  cv::Mat probability = absent ? absentObject(scene, layout, params, seed)
+  const uint64_t nearer = seeds.weight < 0.5f ? seeds.from : seeds.to;
+  cv::Mat probability = absent ? absentObject(scene, layout, params, nearer)
                                : presentObject(scene, masks, layout, params);
   probability += params.noise * layout.noise_field;
   return cv::min(cv::max(probability, 0.0f), 1.0f);

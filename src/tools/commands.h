@@ -21,5 +21,6 @@ Command registerSimstats(CLI::App& app);
 Command registerMeshes(CLI::App& app);
 Command registerSynth(CLI::App& app);
 Command registerCalibrate(CLI::App& app);
+Command registerSimmaps(CLI::App& app);
 
 }  // namespace stocs::tools

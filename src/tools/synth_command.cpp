@@ -45,6 +45,11 @@ Command registerSynth(CLI::App& app) {
                   "BOP models folder to copy (obj_*.ply in mm, models_info.json); default: the "
                   "project's own meshes");
   addSchemaOptions(*cmd, SyntheticDatasetParams::schema(), p);
+  // A bare `--sequence` switches sequences on: a flag rather than the schema's `--sequence BOOL`.
+  CLI::Option* sequence = cmd->get_option("--sequence");
+  const std::string sequence_help = sequence->get_description();
+  cmd->remove_option(sequence);
+  cmd->add_flag("--sequence", p.sequence.enabled, sequence_help)->group("Sequences");
   cmd->add_option("--width", p.camera.width, "Image width, pixels");
   cmd->add_option("--height", p.camera.height, "Image height, pixels");
   cmd->add_option("--fx", p.camera.fx, "Focal length x, pixels");

@@ -101,8 +101,16 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   const std::filesystem::path data = dir / "data";
   stocs::test::writeSyntheticBopDataset(data);
   const std::string args = "_config:=" + config.string() + " _dataset:=" + data.string();
-  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0.0", output), 1) << output;
-  EXPECT_NE(output.find("rate 0 Hz is outside (0, 100]"), std::string::npos) << output;
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=-1.0", output), 1) << output;
+  EXPECT_NE(output.find("rate -1 Hz is outside (0, 100]"), std::string::npos) << output;
+  // At rate 0 (the sequence's own), a sequence's scene_events.json is read.
+  const std::filesystem::path events = data / "test" / "000000" / "scene_events.json";
+  std::ofstream(events) << R"({"rate_hz": 0, "events": [], "stamps": {"0": 0}})";
+  EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _rate:=0", output), 1) << output;
+  EXPECT_NE(output.find(events.string() + ": rate_hz 0 is not a positive frame rate"),
+            std::string::npos)
+      << output;
+  std::filesystem::remove(events);
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args + " _probability_source:=network", output), 1) << output;
   EXPECT_NE(
       output.find("parameter probability_source 'network': unknown probability source 'network'; "

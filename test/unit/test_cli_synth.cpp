@@ -97,7 +97,13 @@ TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
            {" --depth-noise -1", "--depth-noise -1 is outside [0, 10]"},
            {" --min-distance 0.9 --max-distance 0.5", "max_distance 0.5 m is below min_distance"},
            {" --max-elevation 90", "--max-elevation 90 deg is outside [5, 85]"},
-           {" --models " + (root / "none").string(), "not a folder"}}) {
+           {" --models " + (root / "none").string(), "not a folder"},
+           {" --sequence --rotation-speed -1", "--rotation-speed -1 rad/s is outside [0, 20]"},
+           {" --sequence --rate 0", "--rate 0 Hz is outside (0, 1000]"},
+           {" --sequence --frames 100",
+            "the lift (--lift-start 90, --lift-frames 60) ends at frame 149, after the "
+            "sequence's last frame 99 (--frames 100)"},
+           {" --sequence --images 2", "--images 2 does not apply to a sequence"}}) {
     EXPECT_EQ(test::runCommand(kTool + " synth --out " + (root / "g").string() + args, out), 2)
         << args;
     EXPECT_NE(out.find(message), std::string::npos) << args << ": " << out;
@@ -108,6 +114,11 @@ TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
                              out),
             2);
   EXPECT_NE(out.find("unknown segmentation preset 'grainy'"), std::string::npos) << out;
+  EXPECT_EQ(test::runCommand(kTool + " simmaps --dataset " + (root / "none").string() + " --out " +
+                                 (root / "h").string(),
+                             out),
+            2);
+  EXPECT_NE(out.find("not a folder"), std::string::npos) << out;
 }
 
 /// The recall column of the simstats row for `source`, percent; -1 when there is no such row.

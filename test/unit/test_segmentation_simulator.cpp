@@ -74,6 +74,32 @@ class SegmentationSimulatorTest : public ::testing::Test {
   std::vector<int> targets_;
 };
 
+TEST_F(SegmentationSimulatorTest, BlendedSeedsChangeTheMapFromFrameToFrameSmoothly) {
+  const SegmentationNoiseParams noisy = segmentationPreset("noisy");
+  const int obj = targets_[0];
+  const cv::Mat first = simulateSegmentation(scene_, obj, noisy, 11);
+  // Weight 0 is the first seed's map, exactly.
+  EXPECT_EQ(cv::norm(simulateSegmentation(scene_, obj, noisy, SegmentationSeeds{11, 12, 0}), first,
+                     cv::NORM_INF),
+            0);
+  const auto change = [&](const cv::Mat& map) { return cv::mean(cv::abs(map - first))[0]; };
+  // The next frame of a sequence (keyframes 30 frames apart) differs far less from the first than
+  // the next keyframe's map does, and more at each step.
+  const double step =
+      change(simulateSegmentation(scene_, obj, noisy, SegmentationSeeds{11, 12, 1 / 30.0f}));
+  const double half =
+      change(simulateSegmentation(scene_, obj, noisy, SegmentationSeeds{11, 12, 0.5f}));
+  const double next = change(simulateSegmentation(scene_, obj, noisy, 12));
+  EXPECT_GT(step, 0);
+  EXPECT_LT(step, next / 5) << "step " << step << ", next keyframe " << next;
+  EXPECT_LT(step, half);
+  EXPECT_LT(half, next * 1.2);
+  const SegmentationSeeds s = keyframeSeeds(5, 31, 30);
+  EXPECT_EQ(s.from, keyframeSeeds(5, 30, 30).from);
+  EXPECT_EQ(s.to, keyframeSeeds(5, 60, 30).from);
+  EXPECT_FLOAT_EQ(s.weight, 1 / 30.0f);
+}
+
 TEST_F(SegmentationSimulatorTest, SameSeedSameMapOtherSeedOtherMap) {
   const SegmentationNoiseParams p = segmentationPreset("noisy");
   const cv::Mat a = simulateSegmentation(scene_, targets_[0], p, 7);

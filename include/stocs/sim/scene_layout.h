@@ -49,8 +49,17 @@ struct PlacedObject {
 std::vector<PlacedObject> arrangeObjects(const std::vector<std::pair<int, MeshData>>& models,
                                          const SceneLayoutParams& params, Rng& rng);
 
+/// Whether object `moving` of `objects`, put at `pose` (model to table), keeps its footprint at
+/// least `gap` metres from every other object's at its own pose.
+bool footprintClear(const std::vector<PlacedObject>& objects, size_t moving,
+                    const Eigen::Isometry3f& pose, float gap);
+
 /// A camera pose (table frame to camera optical frame: z forward, y down) at a random distance,
 /// elevation and azimuth, looking at a point near the table centre.
 Eigen::Isometry3f randomCameraPose(const SceneLayoutParams& params, Rng& rng);
+
+/// The pose (table frame to camera optical frame) of a camera at `eye` looking at `target` with
+/// zero roll: image x to the right, y down towards the table.
+Eigen::Isometry3f cameraLookingAt(const Eigen::Vector3f& eye, const Eigen::Vector3f& target);
 
 }  // namespace stocs

@@ -69,4 +69,22 @@ struct SegmentationScene {
 cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
                              const SegmentationNoiseParams& params, uint64_t seed);
 
+/// The seeds of a map that changes smoothly from frame to frame: the random layout (missed and
+/// false-positive regions, noise) of seed `from` blended into that of seed `to` by `weight` in
+/// [0, 1], each field kept at unit variance. Weight 0 gives the map of seed `from` alone.
+struct SegmentationSeeds {
+  uint64_t from = 0, to = 0;
+  float weight = 0;
+};
+
+/// The seeds of frame `frame` of a sequence for an object whose maps draw on `object_seed`: the
+/// layouts of keyframes `period` frames apart, blended in between, so that missed and
+/// false-positive regions drift rather than jump from frame to frame.
+SegmentationSeeds keyframeSeeds(uint64_t object_seed, int frame, int period);
+
+/// simulateSegmentation() with a blend of two seeds' layouts; an absent object's blobs or
+/// confusion come from the nearer seed.
+cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
+                             const SegmentationNoiseParams& params, const SegmentationSeeds& seeds);
+
 }  // namespace stocs

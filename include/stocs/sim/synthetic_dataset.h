@@ -4,7 +4,8 @@
 // visibility statistics and the segmentation simulator's probability maps in `prob/`, in the same
 // layout as the real datasets, so every tool runs on them unchanged. `test_targets_bop19.json`
 // lists every (image, object) to estimate: the objects of scene_gt.json and absent ones (inst_count
-// 0).
+// 0). With `sequence.enabled` each scene is a sequence: consecutive frames of a moving camera
+// with object events, described in the scene's scene_events.json (sequence_info.h).
 
 #include <cstdint>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/sim/depth_noise.h"
 #include "stocs/sim/scene_layout.h"
+#include "stocs/sim/sequence_script.h"
 #include "stocs/sim/synthetic_frame.h"
 
 namespace stocs {
@@ -31,6 +33,9 @@ struct SyntheticDatasetParams {
   int absent_per_image = 2;
   double depth_scale = 0.1;  ///< mm per depth unit: 0.1 reaches 6.5 m
   uint64_t seed = 0;
+  /// With `sequence.enabled`, each scene is a sequence of `sequence.frames` consecutive frames
+  /// (sequence_script.h) instead of `images_per_scene` random views.
+  SequenceParams sequence;
 
   /// Key, range, unit and meaning of every field but the camera and the depth noise model (the
   /// options of `stocs synth`).

@@ -1,0 +1,201 @@
+#include "scene_writer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "stocs/sim/synthetic_frame.h"
+#include "stocs/util/error.h"
+#include "stocs/util/random.h"
+
+namespace stocs {
+namespace fs = std::filesystem;
+
+namespace {
+
+/// Distinct colours (BGR) for object ids 1..8; later ids reuse them.
+cv::Vec3b objectColour(int obj_id) {
+  static const cv::Vec3b palette[] = {{40, 50, 200},  {190, 110, 40}, {60, 170, 60},
+                                      {40, 190, 220}, {170, 60, 150}, {30, 120, 230},
+                                      {160, 160, 60}, {120, 60, 60}};
+  return palette[(obj_id - 1) % 8];
+}
+
+BopGtInfo visibility(const cv::Mat& labels, int label, long silhouette_pixels) {
+  BopGtInfo info;
+  const cv::Mat mask = labels == label;
+  info.px_count_all = silhouette_pixels;
+  info.px_count_visib = cv::countNonZero(mask);
+  info.visib_fract =
+      silhouette_pixels > 0 ? static_cast<float>(info.px_count_visib) / silhouette_pixels : 0.0f;
+  if (info.px_count_visib > 0) {
+    const cv::Rect box = cv::boundingRect(mask);
+    info.bbox_visib[0] = box.x;
+    info.bbox_visib[1] = box.y;
+    info.bbox_visib[2] = box.width;
+    info.bbox_visib[3] = box.height;
+  }
+  return info;
+}
+
+/// The object id of each placed object (distractors are 0: never a target).
+std::vector<int> objectIds(const std::vector<PlacedObject>& objects) {
+  std::vector<int> ids;
+  for (const PlacedObject& o : objects) ids.push_back(o.obj_id);
+  return ids;
+}
+
+/// The camera of every image: the intrinsics and the depth scale.
+BopFrameCamera bopCamera(const SyntheticDatasetParams& params) {
+  BopFrameCamera camera;
+  camera.K << params.camera.fx, 0, params.camera.cx, 0, params.camera.fy, params.camera.cy, 0, 0, 1;
+  camera.depth_scale = params.depth_scale;
+  return camera;
+}
+
+/// Writes the visible mask of every dataset object in the frame and records its pose and
+/// visibility; returns the object ids present.
+std::set<int> writeInstances(const fs::path& dir, int im, const SyntheticFrame& frame,
+                             const std::vector<PlacedObject>& objects,
+                             const Eigen::Isometry3f& camera_pose, SceneRecords& records) {
+  std::set<int> present;
+  std::vector<BopGtInstance>& gt = records.gt[im];
+  gt.clear();  // an image whose objects all found no place still gets its (empty) entry
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (objects[i].obj_id == 0) continue;
+    const Eigen::Isometry3f pose = camera_pose * objects[i].pose;
+    gt.push_back({objects[i].obj_id, pose.linear().cast<double>(),
+                  pose.translation().cast<double>() * 1000.0});
+    const int label = static_cast<int>(i) + 1;
+    records.gt_info[im].push_back(visibility(frame.labels, label, frame.silhouette_pixels[i]));
+    writeImage(dir / "mask_visib" / fmt::format("{:06d}_{:06d}.png", im, gt.size() - 1),
+               frame.labels == label);
+    present.insert(objects[i].obj_id);
+  }
+  return present;
+}
+
+}  // namespace
+
+void writeImage(const fs::path& file, const cv::Mat& image) {
+  fs::create_directories(file.parent_path());
+  if (!cv::imwrite(file.string(), image)) {
+    throw InputError(fmt::format("{}: cannot write image", file.string()));
+  }
+}
+
+/// Distractors take a random colour, or half of the time one close to a dataset object's, so that
+/// the segmentation simulator finds look-alikes.
+std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects, Rng& rng) {
+  std::vector<cv::Vec3b> colours;
+  std::vector<int> ids;
+  for (const PlacedObject& o : objects) {
+    if (o.obj_id > 0) ids.push_back(o.obj_id);
+  }
+  for (const PlacedObject& o : objects) {
+    if (o.obj_id > 0) {
+      colours.push_back(objectColour(o.obj_id));
+      continue;
+    }
+    cv::Vec3b c;
+    const bool lookalike = !ids.empty() && uniform01(rng) < 0.5f;
+    const cv::Vec3b like =
+        lookalike ? objectColour(ids[uniformIndex(rng, static_cast<uint32_t>(ids.size()))]) : c;
+    for (int k = 0; k < 3; ++k) {
+      const float jitter = 40 * uniform01(rng) - 20;
+      c[k] = cv::saturate_cast<uint8_t>(lookalike ? like[k] + jitter : 255 * uniform01(rng));
+    }
+    colours.push_back(c);
+  }
+  return colours;
+}
+
+SceneWriter::SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
+                         std::vector<std::pair<int, MeshData>> models,
+                         const std::function<void(const SyntheticImageReport&)>& progress)
+    : dataset_(dataset),
+      params_(params),
+      models_(std::move(models)),
+      segmentation_(segmentationPreset(params.segmentation_preset)),
+      noise_(params.depth_noise.atLevel(params.depth_noise_level)),
+      camera_(bopCamera(params)),
+      progress_(progress) {}
+
+void SceneWriter::writeView(const SceneView& view, SceneRecords& records,
+                            std::chrono::steady_clock::time_point start) const {
+  const std::vector<PlacedObject>& objects = *view.objects;
+  const SyntheticFrame frame = renderSyntheticFrame(objects, *view.colours, view.camera_pose,
+                                                    params_.camera, noise_, view.image_seed);
+  const std::set<int> present = writeInstances(dataset_.sceneDir(view.scene), view.im, frame,
+                                               objects, view.camera_pose, records);
+  const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};
+  const std::vector<BopTarget> targets = imageTargets(view, present, records.gt[view.im]);
+  for (const BopTarget& t : targets) {
+    const cv::Mat probability =
+        simulateSegmentation(seen, t.obj_id, segmentation_, view.segmentation_seeds(t.obj_id));
+    cv::Mat prob16;
+    probability.convertTo(prob16, CV_16UC1, 10000.0);
+    writeImage(dataset_.probabilityPath(view.scene, view.im, t.obj_id), prob16);
+  }
+  records.targets.insert(records.targets.end(), targets.begin(), targets.end());
+  cv::Mat depth16;
+  frame.depth.convertTo(depth16, CV_16UC1, 1000.0 / params_.depth_scale);
+  writeImage(dataset_.depthPath(view.scene, view.im), depth16);
+  writeImage(dataset_.rgbPath(view.scene, view.im), frame.rgb);
+  records.cameras[view.im] = camera_;
+  if (progress_) {
+    progress_({view.scene, view.im, static_cast<int>(records.gt[view.im].size()),
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  }
+}
+
+void SceneWriter::writeSceneFiles(int scene, const SceneRecords& records) const {
+  const fs::path dir = dataset_.sceneDir(scene);
+  writeSceneCameras(dir / "scene_camera.json", records.cameras);
+  writeSceneGroundTruth(dir / "scene_gt.json", records.gt);
+  writeSceneGtInfo(dir / "scene_gt_info.json", records.gt_info);
+}
+
+std::vector<BopTarget> SceneWriter::imageTargets(const SceneView& view,
+                                                 const std::set<int>& present,
+                                                 const std::vector<BopGtInstance>& gt) const {
+  const std::set<int>& listed = view.listed ? *view.listed : present;
+  std::vector<BopTarget> targets;
+  for (int obj : listed) {
+    const auto count = std::count_if(gt.begin(), gt.end(),
+                                     [obj](const BopGtInstance& g) { return g.obj_id == obj; });
+    targets.push_back({view.scene, view.im, obj, static_cast<int>(count)});
+  }
+  for (int obj : absentObjects(listed, view.absent_seed)) {
+    targets.push_back({view.scene, view.im, obj, 0});
+  }
+  std::sort(targets.begin(), targets.end(),
+            [](const BopTarget& a, const BopTarget& b) { return a.obj_id < b.obj_id; });
+  return targets;
+}
+
+std::set<int> SceneWriter::absentObjects(const std::set<int>& present, uint64_t seed) const {
+  std::vector<int> ids;
+  for (const auto& [id, mesh] : models_) ids.push_back(id);
+  return drawAbsentObjects(ids, present, params_.absent_per_image, seed);
+}
+
+std::set<int> drawAbsentObjects(const std::vector<int>& ids, const std::set<int>& present,
+                                int count, uint64_t seed) {
+  std::vector<int> spare;
+  for (int id : ids) {
+    if (!present.count(id)) spare.push_back(id);
+  }
+  Rng rng(streamSeed(seed, 0xab5e47));
+  std::set<int> absent;
+  while (static_cast<int>(absent.size()) < count && !spare.empty()) {
+    const size_t k = uniformIndex(rng, static_cast<uint32_t>(spare.size()));
+    absent.insert(spare[k]);
+    spare.erase(spare.begin() + static_cast<long>(k));
+  }
+  return absent;
+}
+
+}  // namespace stocs
