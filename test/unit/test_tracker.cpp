@@ -1,0 +1,191 @@
+// Tracking (issue 30): a frame whose object moved a little is tracked from the predicted pose, an
+// object whose map vanishes goes lost and is found again, a time jump ends the tracks, and the
+// constant-velocity prediction and the predicted box.
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/stocs.h"
+#include "stocs/tracking/segment_follower.h"
+#include "stocs/util/error.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+constexpr double kFramePeriod = 1.0 / 30;
+
+/// The pose moved by `mm` millimetres along a fixed direction and turned by `deg` degrees about a
+/// fixed axis through the object's origin.
+Eigen::Isometry3f moved(const Eigen::Isometry3f& pose, float mm, float deg) {
+  Eigen::Isometry3f out = pose;
+  out.translation() += Eigen::Vector3f(1, -0.5f, 0.3f).normalized() * (mm / 1000);
+  out.linear() = Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180,
+                                   Eigen::Vector3f(0.2f, 1, 0.4f).normalized()) *
+                 pose.linear();
+  return out;
+}
+
+class TrackerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string file = (test::scratchDir("tracker") / "block.ply").string();
+    writePly(file, asymmetricMesh(), 1000.0f);
+    estimator_.addObject("block", file);
+    model_ = estimator_.model("block");
+    truth_ = test::viewingPose(0.6f);
+  }
+
+  /// The block rendered at `pose`, with a map of 0.9 on it (or none at all).
+  Frame frameAt(const Eigen::Isometry3f& pose, bool with_map = true) const {
+    const CameraIntrinsics camera = test::testCamera();
+    cv::Mat labels;
+    const cv::Mat depth = test::renderDepth({{asymmetricMesh(), pose}}, camera, &labels);
+    Frame frame = Frame::fromDepth(depth, camera, 1.0);
+    cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+    if (with_map) probability.setTo(0.9f, labels == 1);
+    frame.probabilities["block"] = probability;
+    return frame;
+  }
+
+  FrameTracking track(FrameTracker& tracker, const Frame& frame, double stamp) const {
+    return tracker.track(frame, {{"block", model_.get()}}, estimator_.params(), stamp);
+  }
+
+  double adds(const Eigen::Isometry3f& estimate, const Eigen::Isometry3f& truth) const {
+    return addsError(model_->model.points,
+                     {estimate.linear().cast<double>(), estimate.translation().cast<double>()},
+                     {truth.linear().cast<double>(), truth.translation().cast<double>()});
+  }
+
+  Estimator estimator_{PipelineParams{}, ModelCache(test::scratchDir("tracker_cache"))};
+  std::shared_ptr<const PreparedModel> model_;
+  Eigen::Isometry3f truth_;
+};
+
+TEST_F(TrackerTest, APerturbedFrameIsTrackedFromThePrediction) {
+  FrameTracker tracker{TrackingParams{}};
+  const FrameTracking first = track(tracker, frameAt(truth_), 0.0);
+  ASSERT_EQ(first.objects.size(), 1u);
+  ASSERT_EQ(first.objects[0].states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(first.objects[0].detected);
+  EXPECT_EQ(first.counts.redetected, 1);
+
+  // The object moved 6 mm and turned 4 degrees by the next frame.
+  const Eigen::Isometry3f next = moved(truth_, 6, 4);
+  const FrameTracking second = track(tracker, frameAt(next), kFramePeriod);
+  const TrackedObject& o = second.objects[0];
+  ASSERT_EQ(o.states, std::vector<TrackState>{TrackState::kTracked});
+  EXPECT_FALSE(o.detected);
+  EXPECT_EQ(second.counts.tracked, 1);
+  EXPECT_EQ(second.counts.detections, 0);
+  const InstancePose& pose = o.result.estimate.instances.at(0);
+  EXPECT_TRUE(pose.accepted) << pose.rejection;
+  EXPECT_LT(adds(pose.pose, next), 0.02 * model_->model.diameter);
+  EXPECT_EQ(pose.evidence.consensus, 0.0f);  // a followed pose has no bases
+  EXPECT_GT(o.result.estimate.segment_points, 0u);
+}
+
+TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 0.0);
+  const FrameTracking gone = track(tracker, frameAt(truth_, false), kFramePeriod);
+  const TrackedObject& o = gone.objects[0];
+  ASSERT_EQ(o.states, std::vector<TrackState>{TrackState::kLost});
+  EXPECT_TRUE(o.detected);  // detection tried
+  EXPECT_EQ(gone.counts.lost, 1);
+  const InstancePose& pose = o.result.estimate.instances.at(0);
+  EXPECT_FALSE(pose.accepted);
+  EXPECT_EQ(pose.rejection.rfind("lost: ", 0), 0u) << pose.rejection;
+
+  // Detection keeps trying, and the object comes back as the same instance.
+  const FrameTracking back = track(tracker, frameAt(truth_), 2 * kFramePeriod);
+  ASSERT_EQ(back.objects[0].states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(back.objects[0].result.estimate.instances.at(0).accepted);
+  const FrameTracking tracked = track(tracker, frameAt(truth_), 3 * kFramePeriod);
+  EXPECT_EQ(tracked.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
+}
+
+TEST_F(TrackerTest, AGapOrTimeGoingBackEndsTheTracks) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 10.0);
+  EXPECT_EQ(track(tracker, frameAt(truth_), 10.0 + kFramePeriod).objects[0].states[0],
+            TrackState::kTracked);
+  // Past max_gap (0.5 s): detected anew, not tracked.
+  const FrameTracking late = track(tracker, frameAt(truth_), 11.0);
+  EXPECT_TRUE(late.counts.reset);
+  EXPECT_EQ(late.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_TRUE(late.objects[0].detected);
+  // A bag played in a loop: the stamp goes back.
+  const FrameTracking loop = track(tracker, frameAt(truth_), 1.0);
+  EXPECT_TRUE(loop.counts.reset);
+  EXPECT_EQ(loop.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_FALSE(track(tracker, frameAt(truth_), 1.0 + kFramePeriod).counts.reset);
+}
+
+TEST_F(TrackerTest, DetectionRunsOnScheduleWhileTracked) {
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  std::vector<bool> detected;
+  for (int k = 0; k < 5; ++k) {
+    const FrameTracking t = track(tracker, frameAt(truth_), k * kFramePeriod);
+    detected.push_back(t.objects[0].detected);
+    EXPECT_EQ(t.objects[0].result.estimate.instances.size(), 1u);  // one track, index 0
+  }
+  EXPECT_EQ(detected, (std::vector<bool>{true, false, true, false, true}));
+}
+
+TEST_F(TrackerTest, BadParametersAreNamed) {
+  TrackingParams params;
+  params.max_gap = 0;
+  try {
+    FrameTracker{params};
+    ADD_FAILURE() << "max_gap 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_gap"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ConstantVelocity, PredictsAConstantMotionAndDampsIt) {
+  const Eigen::Vector3f centre(0.01f, 0.02f, 0.03f);
+  ConstantVelocity motion(centre);
+  const Eigen::Isometry3f a = test::viewingPose(0.6f);
+  const Eigen::Isometry3f b = moved(a, 5, 3);
+  motion.update(a, b, 0.1);
+  // Applying the same motion again from b: the centre moves as far again, the rotation repeats.
+  const Eigen::Isometry3f c = motion.predict(b, 0.1, 1.0f);
+  EXPECT_NEAR(((c * centre) - (b * centre) - ((b * centre) - (a * centre))).norm(), 0, 1e-6);
+  const Eigen::Matrix3f turn = b.linear() * a.linear().transpose();
+  EXPECT_TRUE((c.linear()).isApprox(turn * b.linear(), 1e-5f));
+  EXPECT_TRUE(motion.predict(b, 0.1, 0.0f).isApprox(b));
+  const Eigen::Isometry3f half = motion.predict(b, 0.1, 0.5f);
+  EXPECT_NEAR(((half * centre) - (b * centre)).norm(), ((b * centre) - (a * centre)).norm() / 2,
+              1e-6);
+  motion.stop();
+  EXPECT_TRUE(motion.predict(b, 0.1, 1.0f).isApprox(b));
+}
+
+TEST(PredictedBox, HoldsTheObjectsImageAndStaysInTheImage) {
+  const CameraIntrinsics camera = test::testCamera();
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);
+  cv::Mat labels;
+  test::renderDepth({{asymmetricMesh(), pose}}, camera, &labels);
+  ObjectModel model;
+  model.points = asymmetricMesh().vertices;
+  const PoseProximity extent(model);
+  const cv::Rect box = predictedBox(extent, pose, camera, 0.0f);
+  EXPECT_EQ(cv::countNonZero(labels(box) == 1), cv::countNonZero(labels == 1));
+  EXPECT_LT(box.area(), camera.width * camera.height / 2);
+  const cv::Rect wide = predictedBox(extent, pose, camera, 0.5f);
+  EXPECT_GT(wide.area(), box.area());
+  Eigen::Isometry3f behind = pose;
+  behind.translation().z() = 0;
+  EXPECT_EQ(predictedBox(extent, behind, camera, 0.5f),
+            cv::Rect(0, 0, camera.width, camera.height));
+}
+
+}  // namespace
+}  // namespace stocs
