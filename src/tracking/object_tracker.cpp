@@ -56,21 +56,22 @@ class ObjectTracker::Step {
     const TrackingParams& params = tracker_.params_;
     const bool failed = followLiveTracks();
     ++tracker_.frames_since_detection_;
+    std::optional<PoseEstimate> search;  // the last one run: local, then full
     if (failed && params.local_search && follower_) {
-      assign(acceptedPoses(follower_->search()));
+      search = follower_->search();
+      assign(acceptedPoses(*search));
       out.searched = true;
     }
     const bool scheduled =
         params.redetect_every > 0 && tracker_.frames_since_detection_ >= params.redetect_every;
-    std::optional<PoseEstimate> detection;
     if (unsettled() || scheduled) {
-      detection = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
-                                 *in_.model, *in_.params, in_.boundary, in_.camera);
+      search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
+                              *in_.model, *in_.params, in_.boundary, in_.camera);
       tracker_.frames_since_detection_ = 0;
-      assign(acceptedPoses(*detection));
+      assign(acceptedPoses(*search));
       out.detected = true;
     }
-    out.estimate = detection ? std::move(*detection) : PoseEstimate{};
+    out.estimate = search ? std::move(*search) : PoseEstimate{};
     report(out);
     out.estimate.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return out;
@@ -205,7 +206,9 @@ class ObjectTracker::Step {
       out.states.push_back(track.state);
     }
     e.takeFirstInstance();
-    if (!out.detected && follower_) e.segment_points = follower_->segment().size();
+    if (!out.detected && !out.searched && follower_) {
+      e.segment_points = follower_->segment().size();
+    }
   }
 
   ObjectTracker& tracker_;

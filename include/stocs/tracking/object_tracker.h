@@ -40,8 +40,9 @@ struct Track {
 /// One object's outcome of one frame.
 struct ObjectTracking {
   /// One instance per track in index order (instance k is track k): accepted unless lost (a lost
-  /// instance holds the last accepted pose, rejected with the reason). The detection's counters and
-  /// stage times when one ran; `seconds` is the whole step.
+  /// instance holds the last accepted pose, rejected with the reason). The counters and stage
+  /// times of the last search that ran (full detection, else the local search), else the segment
+  /// size of the followed box; `seconds` is the whole step.
   PoseEstimate estimate;
   std::vector<TrackState> states;  ///< per instance
   bool searched = false;           ///< the local search ran
