@@ -74,6 +74,8 @@ class StocsNode {
   void onTimeJump(size_t input, const ros::Time& stamp);
   FrameMessages toFrame(std::vector<InputMessage>& messages, size_t objects) const;
   FrameResult process(const QueuedJob& queued);
+  /// The job's frame through the tracker (tracking.enabled), which starts anew with a new setup.
+  FrameResult track(const QueuedJob& queued);
   void onBackgroundError(std::exception_ptr error);
   void publishStatistics();
   /// Validates an ~estimate request and queues its job on the worker.
@@ -100,6 +102,9 @@ class StocsNode {
 
   OutputPublisher output_;
   SymmetricPoseTracker tracker_;  // worker thread only
+  /// Worker thread only: the tracks of the frames (never of ~estimate calls), for `tracked_setup_`.
+  std::optional<stocs::FrameTracker> frame_tracker_;
+  std::shared_ptr<const EstimationSetup> tracked_setup_;
 
   ros::CallbackQueue service_queue_;
   ros::AsyncSpinner service_spinner_;

@@ -290,8 +290,18 @@ FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t obj
   return frame;
 }
 
+FrameResult StocsNode::track(const QueuedJob& queued) {
+  if (!frame_tracker_ || tracked_setup_ != queued.setup) {
+    frame_tracker_.emplace(queued.setup->config.tracking);  // a reload may change every object
+    tracked_setup_ = queued.setup;
+  }
+  return trackFrame(queued.job, *queued.setup, *frame_tracker_);
+}
+
 FrameResult StocsNode::process(const QueuedJob& queued) {
-  FrameResult result = estimateFrame(queued.job, *queued.setup);
+  // ~estimate calls detect: a call on an older frame or on given inputs must not move the tracks.
+  const bool tracking = !queued.requested && queued.setup->config.tracking.enabled;
+  FrameResult result = tracking ? track(queued) : estimateFrame(queued.job, *queued.setup);
   for (ObjectOutcome& o : result.objects) {
     stocs::PoseEstimate& e = o.estimate;
     if (e.found) {
@@ -300,6 +310,7 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
   }
   output_.publish(result, *queued.setup, queued.timeline);
   statistics_->poses(foundPoses(result).size(), rejectedPoses(result).size());
+  if (result.tracking) statistics_->tracking(*result.tracking);
   if (!queued.requested) statistics_->estimated();
   return result;
 }
