@@ -24,9 +24,12 @@ FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObj
   // estimateFrame checks each object's input and calls the estimator for the objects in order.
   std::vector<ObjectTracking> tracking;
   auto next = objects.begin();
+  bool redetection_taken = false;  // one scheduled full detection a frame
   const ObjectEstimator step = [&](const ObjectInput& in) {
     ObjectTracker& tracker = objects_.try_emplace((next++)->name, params_).first->second;
-    tracking.push_back(tracker.update(in, dt));
+    const bool may_redetect = !redetection_taken;
+    redetection_taken = redetection_taken || tracker.redetectionDue();
+    tracking.push_back(tracker.update(in, dt, may_redetect));
     return tracking.back().estimate;
   };
   std::vector<ObjectResult> results = estimateFrame(frame, objects, params, step);

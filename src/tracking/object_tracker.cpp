@@ -42,10 +42,11 @@ const char* toString(TrackState state) {
 /// the attempts of those that are not.
 class ObjectTracker::Step {
  public:
-  Step(ObjectTracker& tracker, const ObjectInput& in, double dt)
+  Step(ObjectTracker& tracker, const ObjectInput& in, double dt, bool may_redetect)
       : tracker_(tracker),
         in_(in),
         dt_(dt),
+        may_redetect_(may_redetect),
         extent_(in.model->model),
         settled_(tracker.tracks_.size(), 0),
         attempts_(tracker.tracks_.size()) {}
@@ -54,6 +55,7 @@ class ObjectTracker::Step {
     const auto start = Clock::now();
     ObjectTracking out;
     const TrackingParams& params = tracker_.params_;
+    const bool scheduled = may_redetect_ && tracker_.redetectionDue();
     const bool failed = followLiveTracks();
     ++tracker_.frames_since_detection_;
     std::optional<PoseEstimate> search;  // the last one run: local, then full
@@ -62,8 +64,6 @@ class ObjectTracker::Step {
       assign(acceptedPoses(*search));
       out.searched = true;
     }
-    const bool scheduled =
-        params.redetect_every > 0 && tracker_.frames_since_detection_ >= params.redetect_every;
     if (unsettled() || scheduled) {
       search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
                               *in_.model, *in_.params, in_.boundary, in_.camera);
@@ -214,6 +214,7 @@ class ObjectTracker::Step {
   ObjectTracker& tracker_;
   const ObjectInput& in_;
   double dt_;
+  bool may_redetect_;
   PoseProximity extent_;
   std::vector<char> settled_;
   std::vector<std::optional<InstancePose>> attempts_;  // failed follows, by track
@@ -224,8 +225,12 @@ ObjectTracker::ObjectTracker(const TrackingParams& params) : params_(params) {
   params_.validate();
 }
 
-ObjectTracking ObjectTracker::update(const ObjectInput& in, double dt) {
-  return Step(*this, in, dt).run();
+ObjectTracking ObjectTracker::update(const ObjectInput& in, double dt, bool may_redetect) {
+  return Step(*this, in, dt, may_redetect).run();
+}
+
+bool ObjectTracker::redetectionDue() const {
+  return params_.redetect_every > 0 && frames_since_detection_ + 1 >= params_.redetect_every;
 }
 
 }  // namespace stocs

@@ -1,7 +1,5 @@
 #include "stocs/tracking/segment_follower.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -30,9 +28,10 @@ cv::Rect predictedBox(const PoseProximity& extent, const Eigen::Isometry3f& pose
 
 SegmentFollower::SegmentFollower(const ObjectInput& in, const cv::Rect& box) : in_(in) {
   const PipelineParams& params = *in.params;
-  const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
+  // One thread: a box holds a few thousand pixels, fewer than pay for waking a team (and on a
+  // busy machine a team waiting for a core costs far more than the scan).
   segment_ = buildSoftSegment(*in.cloud, *in.probability, static_cast<float>(in.camera->fx),
-                              params.segment, threads, box);
+                              params.segment, 1, box);
   scorer_.emplace(segment_, params.stocs.lcp);
   if (params.stocs.icp.enabled) icp_.emplace(segment_, params.stocs.icp);
 }

@@ -138,6 +138,24 @@ TEST_F(TrackerTest, DetectionRunsOnScheduleWhileTracked) {
   EXPECT_EQ(detected, (std::vector<bool>{true, false, true, false, true}));
 }
 
+TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  Frame frame = frameAt(truth_);
+  frame.probabilities["copy"] = frame.probabilities["block"];  // a second object, the same block
+  std::vector<bool> first, second;
+  for (int k = 0; k < 5; ++k) {
+    const FrameTracking t = tracker.track(frame, {{"block", model_.get()}, {"copy", model_.get()}},
+                                          estimator_.params(), k * kFramePeriod);
+    first.push_back(t.objects.at(0).detected);
+    second.push_back(t.objects.at(1).detected);
+  }
+  // Both are due on frame 2: the first object detects there, the second one frame later.
+  EXPECT_EQ(first, (std::vector<bool>{true, false, true, false, true}));
+  EXPECT_EQ(second, (std::vector<bool>{true, false, false, true, false}));
+}
+
 TEST_F(TrackerTest, BadParametersAreNamed) {
   TrackingParams params;
   params.max_gap = 0;

@@ -40,7 +40,8 @@ class FrameTracker {
   explicit FrameTracker(const TrackingParams& params);
 
   /// The objects of `frame`, taken at `stamp` (seconds), as estimateFrame takes them (same
-  /// errors); each keeps its tracks by name.
+  /// errors); each keeps its tracks by name. Of the objects whose scheduled full detection is due,
+  /// the first in `objects` runs it; the others wait for later frames.
   FrameTracking track(const Frame& frame, const std::vector<FrameObject>& objects,
                       const PipelineParams& params, double stamp);
   /// Ends every track: the next frame starts with detection.

@@ -7,7 +7,8 @@
 //      full detection (estimateObject); an accepted pose there -> redetected, else -> lost;
 //   3. full detection also runs when there is no track, while a track is lost (detection keeps
 //      trying), and every TrackingParams::redetect_every frames, so that a track that slid onto a
-//      look-alike is replaced by a detection the confidence prefers.
+//      look-alike is replaced by a detection the confidence prefers (FrameTracker lets one object
+//      a frame do so, so that the objects' schedules do not all fall on one frame).
 // Detected poses continue the track whose model centre is nearest (TrackingParams::
 // match_distance), so an instance keeps its index while it is seen; further accepted poses start
 // new tracks up to StocsParams::instances.
@@ -54,8 +55,12 @@ class ObjectTracker {
   /// Throws InputError naming the first parameter out of range.
   explicit ObjectTracker(const TrackingParams& params);
 
-  /// The object in a new frame `dt` seconds after the previous one.
-  ObjectTracking update(const ObjectInput& in, double dt);
+  /// The object in a new frame `dt` seconds after the previous one. The scheduled full detection
+  /// runs only where `may_redetect` allows it (else on a later frame).
+  ObjectTracking update(const ObjectInput& in, double dt, bool may_redetect = true);
+  /// Whether the schedule (TrackingParams::redetect_every) asks for full detection in the next
+  /// frame.
+  bool redetectionDue() const;
 
   const std::vector<Track>& tracks() const { return tracks_; }
 
