@@ -88,6 +88,59 @@ TEST_F(TrackerTest, APerturbedFrameIsTrackedFromThePrediction) {
   EXPECT_GT(o.result.estimate.segment_points, 0u);
 }
 
+TEST_F(TrackerTest, AnObjectMovingSteadilyStaysTrackedAndAccurate) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 0.0);
+  // 8 mm and 3 degrees a frame (24 cm/s, 90 deg/s at 30 Hz): the velocity carries the prediction.
+  for (int k = 1; k <= 5; ++k) {
+    const Eigen::Isometry3f at = moved(truth_, 8.0f * k, 3.0f * k);
+    const FrameTracking t = track(tracker, frameAt(at), k * kFramePeriod);
+    ASSERT_EQ(t.objects[0].states, std::vector<TrackState>{TrackState::kTracked}) << "frame " << k;
+    EXPECT_LT(adds(t.objects[0].result.estimate.instances.at(0).pose, at),
+              0.02 * model_->model.diameter)
+        << "frame " << k;
+  }
+  const Track& track_now = tracker.objects().at("block").tracks().at(0);
+  EXPECT_GT(track_now.motion.linear().norm(), 0.15f);  // m/s, measured from the poses
+}
+
+TEST_F(TrackerTest, InstancesKeepTheirIndicesWhileTheyMove) {
+  PipelineParams params = estimator_.params();
+  params.stocs.instances = 2;
+  // Two copies of the block side by side.
+  Eigen::Isometry3f left = truth_, right = truth_;
+  left.translation().x() -= 0.08f;
+  right.translation().x() += 0.08f;
+  const auto frameOf = [&](const Eigen::Isometry3f& a, const Eigen::Isometry3f& b) {
+    const CameraIntrinsics camera = test::testCamera();
+    cv::Mat labels;
+    const cv::Mat depth =
+        test::renderDepth({{asymmetricMesh(), a}, {asymmetricMesh(), b}}, camera, &labels);
+    Frame frame = Frame::fromDepth(depth, camera, 1.0);
+    cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+    probability.setTo(0.9f, labels > 0);
+    frame.probabilities["block"] = probability;
+    return frame;
+  };
+  FrameTracker tracker{TrackingParams{}};
+  const FrameTracking first =
+      tracker.track(frameOf(left, right), {{"block", model_.get()}}, params, 0.0);
+  const std::vector<InstancePose>& found = first.objects.at(0).result.estimate.instances;
+  ASSERT_EQ(found.size(), 2u);
+  const bool left_first = adds(found[0].pose, left) < adds(found[1].pose, left);
+  for (int k = 1; k <= 3; ++k) {
+    const Eigen::Isometry3f a = moved(left, 5.0f * k, 2.0f * k), b = moved(right, -5.0f * k, 0);
+    const FrameTracking t =
+        tracker.track(frameOf(a, b), {{"block", model_.get()}}, params, k * kFramePeriod);
+    const TrackedObject& o = t.objects.at(0);
+    ASSERT_EQ(o.states, (std::vector<TrackState>{TrackState::kTracked, TrackState::kTracked}));
+    const std::vector<InstancePose>& now = o.result.estimate.instances;
+    const double limit = 0.05 * model_->model.diameter;
+    EXPECT_LT(adds(now[left_first ? 0 : 1].pose, a), limit) << "frame " << k;
+    EXPECT_LT(adds(now[left_first ? 1 : 0].pose, b), limit) << "frame " << k;
+  }
+}
+
 TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
   FrameTracker tracker{TrackingParams{}};
   track(tracker, frameAt(truth_), 0.0);

@@ -48,6 +48,8 @@ class FrameTracker {
   void reset();
 
   const TrackingParams& params() const { return params_; }
+  /// Each object's tracker, by name.
+  const std::map<std::string, ObjectTracker>& objects() const { return objects_; }
 
  private:
   /// Whether a frame at `stamp` must not continue the tracks.
