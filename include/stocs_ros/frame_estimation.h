@@ -35,6 +35,9 @@ struct EstimationJob {
   FrameMessages frame;
   std::vector<size_t> objects;        ///< indices into config.objects
   std::optional<double> time_budget;  ///< seconds per object, instead of the configured one
+  /// The stamp of the frame the synchronizer matched before this one (tracking measures input
+  /// gaps with it, not the time estimation took); none for the first frame and ~estimate calls.
+  std::optional<ros::Time> previous_input;
 };
 
 struct ObjectOutcome {

@@ -92,10 +92,11 @@ class StocsNode {
 
   std::vector<Input> inputs_;
   std::vector<ros::Subscriber> subscribers_;
-  std::mutex sync_mutex_;  // guards sync_, latest_frame_ and latest_timeline_
+  std::mutex sync_mutex_;  // guards sync_, latest_frame_, latest_timeline_ and latest_stamp_
   std::unique_ptr<StampSynchronizer<InputMessage>> sync_;
   std::optional<FrameMessages> latest_frame_;
   uint64_t latest_timeline_ = 0;                ///< time jumps back before latest_frame_
+  std::optional<ros::Time> latest_stamp_;       ///< of latest_frame_
   std::unique_ptr<NodeStatistics> statistics_;  // made with the inputs' topics
   ros::Publisher statistics_pub_;
   ros::WallTimer statistics_timer_;

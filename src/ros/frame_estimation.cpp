@@ -112,8 +112,11 @@ FrameResult trackFrame(const EstimationJob& job, const EstimationSetup& setup,
   const stocs::Frame frame = convertFrame(job, setup.config);
   FrameResult result;
   result.header = job.frame.header();
-  stocs::FrameTracking tracked = tracker.track(
-      frame, jobObjects(job, setup), jobParams(job, setup.config), result.header.stamp.toSec());
+  std::optional<double> previous_input;
+  if (job.previous_input) previous_input = job.previous_input->toSec();
+  stocs::FrameTracking tracked =
+      tracker.track(frame, jobObjects(job, setup), jobParams(job, setup.config),
+                    result.header.stamp.toSec(), previous_input);
   for (size_t k = 0; k < tracked.objects.size(); ++k) {
     stocs::TrackedObject& t = tracked.objects[k];
     result.objects.push_back({job.objects[k], std::move(t.result.estimate), std::move(t.states)});

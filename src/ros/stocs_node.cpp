@@ -238,11 +238,13 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
     statistics_->matched();
     latest_frame_ = toFrame(match->messages, current->config.objects.size());
     latest_timeline_ = sync_->timeJumps();
+    const std::optional<ros::Time> previous = latest_stamp_;
+    latest_stamp_ = match->stamp;
     if (!current->config.output.estimate_on_frames) {
       statistics_->kept();
       return;
     }
-    job = QueuedJob{{*latest_frame_, {}, std::nullopt}, current, false, latest_timeline_};
+    job = QueuedJob{{*latest_frame_, {}, std::nullopt, previous}, current, false, latest_timeline_};
   }
   for (size_t i = 0; i < current->config.objects.size(); ++i) job->job.objects.push_back(i);
   if (worker_->offer(std::move(*job))) {

@@ -11,14 +11,16 @@ void FrameTracker::reset() {
   last_stamp_.reset();
 }
 
-bool FrameTracker::timeJumped(double stamp) const {
-  return last_stamp_ && (stamp < *last_stamp_ || stamp - *last_stamp_ > params_.max_gap);
+bool FrameTracker::timeJumped(double stamp, std::optional<double> previous_input) const {
+  return last_stamp_ &&
+         (stamp < *last_stamp_ || stamp - previous_input.value_or(*last_stamp_) > params_.max_gap);
 }
 
 FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObject>& objects,
-                                  const PipelineParams& params, double stamp) {
+                                  const PipelineParams& params, double stamp,
+                                  std::optional<double> previous_input) {
   FrameTracking out;
-  out.counts.reset = timeJumped(stamp);
+  out.counts.reset = timeJumped(stamp, previous_input);
   if (out.counts.reset) reset();
   const double dt = last_stamp_ ? stamp - *last_stamp_ : 0.0;
   // estimateFrame checks each object's input and calls the estimator for the objects in order.

@@ -178,6 +178,23 @@ TEST_F(TrackerTest, AGapOrTimeGoingBackEndsTheTracks) {
   EXPECT_FALSE(track(tracker, frameAt(truth_), 1.0 + kFramePeriod).counts.reset);
 }
 
+TEST_F(TrackerTest, TheGapIsTheInputsNotTheTimeTheTrackerTook) {
+  FrameTracker tracker{TrackingParams{}};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const Frame frame = frameAt(truth_);
+  tracker.track(frame, objects, estimator_.params(), 0.0);
+  // Input frames were skipped while the tracker worked: 2 s since the frame it tracked, but the
+  // input's previous frame came a frame period before this one.
+  const FrameTracking skipped =
+      tracker.track(frame, objects, estimator_.params(), 2.0, 2.0 - kFramePeriod);
+  EXPECT_FALSE(skipped.counts.reset);
+  EXPECT_EQ(skipped.objects[0].states[0], TrackState::kTracked);
+  // The input itself paused for a second.
+  const FrameTracking paused = tracker.track(frame, objects, estimator_.params(), 3.0, 2.0);
+  EXPECT_TRUE(paused.counts.reset);
+  EXPECT_EQ(paused.objects[0].states[0], TrackState::kRedetected);
+}
+
 TEST_F(TrackerTest, DetectionRunsOnScheduleWhileTracked) {
   TrackingParams params;
   params.redetect_every = 2;

@@ -40,10 +40,14 @@ class FrameTracker {
   explicit FrameTracker(const TrackingParams& params);
 
   /// The objects of `frame`, taken at `stamp` (seconds), as estimateFrame takes them (same
-  /// errors); each keeps its tracks by name. Of the objects whose scheduled full detection is due,
-  /// the first in `objects` runs it; the others wait for later frames.
+  /// errors); each keeps its tracks by name. `previous_input`, where the caller skipped input
+  /// frames (a node that keeps up by taking the newest frame), is the stamp of the input frame
+  /// before this one: the gap test measures the input's gap, not the time the tracker took. Of the
+  /// objects whose scheduled full detection is due, the first in `objects` runs it; the others wait
+  /// for later frames.
   FrameTracking track(const Frame& frame, const std::vector<FrameObject>& objects,
-                      const PipelineParams& params, double stamp);
+                      const PipelineParams& params, double stamp,
+                      std::optional<double> previous_input = std::nullopt);
   /// Ends every track: the next frame starts with detection.
   void reset();
 
@@ -52,8 +56,9 @@ class FrameTracker {
   const std::map<std::string, ObjectTracker>& objects() const { return objects_; }
 
  private:
-  /// Whether a frame at `stamp` must not continue the tracks.
-  bool timeJumped(double stamp) const;
+  /// Whether a frame at `stamp` (the input's previous frame at `previous_input`, else the last
+  /// tracked one) must not continue the tracks.
+  bool timeJumped(double stamp, std::optional<double> previous_input) const;
 
   TrackingParams params_;
   std::map<std::string, ObjectTracker> objects_;
