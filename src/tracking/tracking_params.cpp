@@ -13,7 +13,7 @@ const ParamSet<TrackingParams>& TrackingParams::schema() {
                "full detection every this many frames while tracked; 0: only when tracking fails")
           .flag("--redetect-every")
           .add(&TrackingParams::max_gap, "max_gap", "s", ParamRange::aboveUpTo(0, 3600),
-               "a longer gap between frames, or a stamp going back, ends every track")
+               "a longer gap between input frames, or a stamp going back, ends every track")
           .flag("--max-gap")
           .add(&TrackingParams::velocity_damping, "velocity_damping", "", ParamRange::closed(0, 1),
                "share of the last velocity applied by the prediction; 0: the last pose")

@@ -12,8 +12,9 @@ struct TrackingParams {
   /// Full detection (StoCS on the whole image) also runs every this many frames while an object is
   /// tracked, so that a track that slid onto a look-alike is caught; 0: only when tracking fails.
   int redetect_every = 15;
-  /// Seconds: a longer gap between two frames (or a stamp going back) ends every track, as the
-  /// objects may have moved anywhere meanwhile.
+  /// Seconds: a longer gap between two input frames (or a stamp going back) ends every track, as
+  /// the objects may have moved anywhere meanwhile. Frames a node skips while it is busy are no
+  /// gap (FrameTracker::track).
   double max_gap = 0.5;
   /// Share of the last velocity the prediction applies (a damped constant velocity); 0 predicts
   /// the last pose.
