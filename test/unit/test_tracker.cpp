@@ -141,6 +141,44 @@ TEST_F(TrackerTest, InstancesKeepTheirIndicesWhileTheyMove) {
   }
 }
 
+TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
+  // The track holds a block the map marks faintly; the map marks another block strongly: the
+  // tracked pose is accepted, but the scheduled detection finds the other block with a higher
+  // confidence, and the track moves there.
+  Eigen::Isometry3f faint = truth_, strong = truth_;
+  faint.translation().x() -= 0.08f;
+  strong.translation().x() += 0.08f;
+  const CameraIntrinsics camera = test::testCamera();
+  cv::Mat labels;
+  const cv::Mat depth =
+      test::renderDepth({{asymmetricMesh(), faint}, {asymmetricMesh(), strong}}, camera, &labels);
+  Frame both = Frame::fromDepth(depth, camera, 1.0);
+  cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+  probability.setTo(0.9f, labels == 1);
+  both.probabilities["block"] = probability.clone();
+  probability.setTo(0.5f, labels == 1);
+  probability.setTo(0.95f, labels == 2);
+  Frame look_alike = both;
+  look_alike.probabilities["block"] = probability;
+  both.probabilities["block"].setTo(0.0f, labels == 2);  // first only the faint one is marked
+
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  const auto poseAt = [&](const FrameTracking& t) {
+    return t.objects.at(0).result.estimate.instances.at(0);
+  };
+  ASSERT_LT(adds(poseAt(track(tracker, both, 0.0)).pose, faint), 0.05 * model_->model.diameter);
+  const FrameTracking held = track(tracker, look_alike, kFramePeriod);
+  ASSERT_EQ(held.objects[0].states[0], TrackState::kTracked);  // accepted where it was
+  EXPECT_LT(adds(poseAt(held).pose, faint), 0.05 * model_->model.diameter);
+  const FrameTracking checked = track(tracker, look_alike, 2 * kFramePeriod);
+  ASSERT_TRUE(checked.objects[0].detected);
+  EXPECT_EQ(checked.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_LT(adds(poseAt(checked).pose, strong), 0.05 * model_->model.diameter);
+  EXPECT_GT(poseAt(checked).confidence, poseAt(held).confidence);
+}
+
 TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
   FrameTracker tracker{TrackingParams{}};
   track(tracker, frameAt(truth_), 0.0);
