@@ -38,16 +38,25 @@ class TrackerTest : public ::testing::Test {
     truth_ = test::viewingPose(0.6f);
   }
 
-  /// The block rendered at `pose`, with a map of 0.9 on it (or none at all).
-  Frame frameAt(const Eigen::Isometry3f& pose, bool with_map = true) const {
+  /// Copies of the block rendered at the poses, the map `block` holding each one's value on it.
+  static Frame blocksAt(const std::vector<std::pair<Eigen::Isometry3f, float>>& blocks) {
     const CameraIntrinsics camera = test::testCamera();
+    std::vector<test::PlacedMesh> meshes;
+    for (const auto& [pose, map] : blocks) meshes.push_back({asymmetricMesh(), pose});
     cv::Mat labels;
-    const cv::Mat depth = test::renderDepth({{asymmetricMesh(), pose}}, camera, &labels);
+    const cv::Mat depth = test::renderDepth(meshes, camera, &labels);
     Frame frame = Frame::fromDepth(depth, camera, 1.0);
     cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
-    if (with_map) probability.setTo(0.9f, labels == 1);
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      probability.setTo(blocks[k].second, labels == static_cast<int>(k + 1));
+    }
     frame.probabilities["block"] = probability;
     return frame;
+  }
+
+  /// The block rendered at `pose`, with a map of 0.9 on it (or none at all).
+  static Frame frameAt(const Eigen::Isometry3f& pose, bool with_map = true) {
+    return blocksAt({{pose, with_map ? 0.9f : 0.0f}});
   }
 
   FrameTracking track(FrameTracker& tracker, const Frame& frame, double stamp) const {
@@ -111,16 +120,8 @@ TEST_F(TrackerTest, InstancesKeepTheirIndicesWhileTheyMove) {
   Eigen::Isometry3f left = truth_, right = truth_;
   left.translation().x() -= 0.08f;
   right.translation().x() += 0.08f;
-  const auto frameOf = [&](const Eigen::Isometry3f& a, const Eigen::Isometry3f& b) {
-    const CameraIntrinsics camera = test::testCamera();
-    cv::Mat labels;
-    const cv::Mat depth =
-        test::renderDepth({{asymmetricMesh(), a}, {asymmetricMesh(), b}}, camera, &labels);
-    Frame frame = Frame::fromDepth(depth, camera, 1.0);
-    cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
-    probability.setTo(0.9f, labels > 0);
-    frame.probabilities["block"] = probability;
-    return frame;
+  const auto frameOf = [](const Eigen::Isometry3f& a, const Eigen::Isometry3f& b) {
+    return blocksAt({{a, 0.9f}, {b, 0.9f}});
   };
   FrameTracker tracker{TrackingParams{}};
   const FrameTracking first =
@@ -148,19 +149,8 @@ TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
   Eigen::Isometry3f faint = truth_, strong = truth_;
   faint.translation().x() -= 0.08f;
   strong.translation().x() += 0.08f;
-  const CameraIntrinsics camera = test::testCamera();
-  cv::Mat labels;
-  const cv::Mat depth =
-      test::renderDepth({{asymmetricMesh(), faint}, {asymmetricMesh(), strong}}, camera, &labels);
-  Frame both = Frame::fromDepth(depth, camera, 1.0);
-  cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
-  probability.setTo(0.9f, labels == 1);
-  both.probabilities["block"] = probability.clone();
-  probability.setTo(0.5f, labels == 1);
-  probability.setTo(0.95f, labels == 2);
-  Frame look_alike = both;
-  look_alike.probabilities["block"] = probability;
-  both.probabilities["block"].setTo(0.0f, labels == 2);  // first only the faint one is marked
+  const Frame both = blocksAt({{faint, 0.9f}, {strong, 0.0f}});  // first only the faint one
+  const Frame look_alike = blocksAt({{faint, 0.5f}, {strong, 0.95f}});
 
   TrackingParams params;
   params.redetect_every = 2;
