@@ -40,25 +40,29 @@ std::filesystem::path sharedDataset(const std::string& name) {
   return std::filesystem::path(root) / name;
 }
 
-/// The generated scene, written once per process and removed at exit.
+/// A generated scene of `objects` objects and two distractors (seed 1), written to a temporary
+/// folder; removed at exit.
+struct GeneratedScene {
+  std::filesystem::path root;
+  explicit GeneratedScene(int objects)
+      : root(std::filesystem::temp_directory_path() /
+             ("stocs_bench_scene_" + std::to_string(objects) + "_" + std::to_string(getpid()))) {
+    SyntheticDatasetParams p;
+    p.layout.objects = objects;
+    p.layout.distractors = 2;
+    p.seed = 1;
+    std::filesystem::remove_all(root);
+    writeSyntheticDataset(root, p);
+  }
+  ~GeneratedScene() {
+    std::error_code ignored;
+    std::filesystem::remove_all(root, ignored);
+  }
+};
+
+/// The generated scene of the latency benchmark, written once per process.
 std::filesystem::path generatedScene() {
-  struct Scene {
-    std::filesystem::path root =
-        std::filesystem::temp_directory_path() / ("stocs_bench_scene_" + std::to_string(getpid()));
-    Scene() {
-      SyntheticDatasetParams p;
-      p.layout.objects = 3;
-      p.layout.distractors = 2;
-      p.seed = 1;
-      std::filesystem::remove_all(root);
-      writeSyntheticDataset(root, p);
-    }
-    ~Scene() {
-      std::error_code ignored;
-      std::filesystem::remove_all(root, ignored);
-    }
-  };
-  static const Scene scene;
+  static const GeneratedScene scene(3);
   return scene.root;
 }
 
@@ -78,6 +82,28 @@ const Frame& dove() {
 }
 const Frame& box() {
   return frame(generatedScene(), 0, 0, 1);
+}
+
+const SceneFrame& demoScene() {
+  static const GeneratedScene scene(6);
+  static const SceneFrame loaded = [] {
+    const BopDataset ds(scene.root);
+    SceneFrame s;
+    const cv::Mat depth = ds.loadDepth(0, 0);
+    const BopFrameCamera cam = ds.sceneCameras(0).at(0);
+    s.frame = stocs::Frame::fromDepth(depth, cam.intrinsics(depth.cols, depth.rows),
+                                      cam.depth_scale / 1000);
+    const std::map<int, std::vector<BopGtInstance>> truth = ds.sceneGroundTruth(0);
+    for (const BopGtInstance& g : truth.at(0)) {
+      const std::string name = std::to_string(g.obj_id);
+      s.frame.probabilities[name] = ds.loadProbability(0, 0, g.obj_id);
+      s.models[g.obj_id] =
+          prepareModelFile(ds.modelPath(g.obj_id).string(), 0.001f, benchmarkParams().model);
+    }
+    for (const auto& [id, model] : s.models) s.objects.push_back({std::to_string(id), &model});
+    return s;
+  }();
+  return loaded;
 }
 
 }  // namespace stocs::bench

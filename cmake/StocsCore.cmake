@@ -2,6 +2,7 @@
 # (include/stocs/<module>/) and sources with their private headers (src/<module>/). Dependencies run
 # one way:
 #   util <- geometry <- io <- model <- estimation      (the algorithm and what it needs)
+#   estimation <- tracking                              (poses followed from frame to frame)
 #   geometry, io <- sim                                 (scene generator, segmentation simulator)
 #   io, sim <- eval                                     (metrics and dataset evaluation)
 # `stocs::core` is all of them, for programs that use every module (the tool, the tests).
@@ -42,13 +43,15 @@ target_compile_definitions(stocs_io PRIVATE ${PCL_DEFINITIONS})
 stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
 target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
 stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
+stocs_add_module(tracking PUBLIC stocs_estimation)
 stocs_add_module(sim PUBLIC stocs_io
   PRIVATE opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)
 stocs_add_module(eval PUBLIC stocs_io stocs_sim)
 
 add_library(stocs_core INTERFACE)
 target_link_libraries(stocs_core INTERFACE
-  stocs_util stocs_geometry stocs_io stocs_model stocs_estimation stocs_sim stocs_eval)
+  stocs_util stocs_geometry stocs_io stocs_model stocs_estimation stocs_tracking stocs_sim
+  stocs_eval)
 set_target_properties(stocs_core PROPERTIES EXPORT_NAME core)
 add_library(stocs::core ALIAS stocs_core)
 

@@ -19,7 +19,7 @@ generate_messages(DEPENDENCIES geometry_msgs sensor_msgs std_msgs)
 catkin_package(
   INCLUDE_DIRS include
   LIBRARIES stocs_estimation stocs_eval stocs_geometry stocs_io stocs_methods stocs_model stocs_ros
-            stocs_sim stocs_util
+            stocs_sim stocs_tracking stocs_util
   CATKIN_DEPENDS ${STOCS_ROS_EXPORTED_DEPENDS}
 )
 

@@ -18,6 +18,7 @@
 #include "stocs/estimation/frame.h"
 #include "stocs/estimation/pipeline.h"
 #include "stocs/model/model_cache.h"
+#include "stocs/tracking/frame_tracker.h"
 
 namespace stocs {
 

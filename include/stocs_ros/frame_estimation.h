@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stocs/estimation/frame.h"
+#include "stocs/tracking/frame_tracker.h"
 #include "stocs_ros/estimation_setup.h"
 
 namespace stocs_ros {
@@ -34,20 +35,31 @@ struct EstimationJob {
   FrameMessages frame;
   std::vector<size_t> objects;        ///< indices into config.objects
   std::optional<double> time_budget;  ///< seconds per object, instead of the configured one
+  /// The stamp of the frame the synchronizer matched before this one (tracking measures input
+  /// gaps with it, not the time estimation took); none for the first frame and ~estimate calls.
+  std::optional<ros::Time> previous_input;
 };
 
 struct ObjectOutcome {
   size_t object;  ///< index into config.objects
   stocs::PoseEstimate estimate;
+  /// Per instance of `estimate` when it was tracked (trackFrame); empty when detected.
+  std::vector<stocs::TrackState> states;
 };
 
 struct FrameResult {
   std_msgs::Header header;
-  std::vector<ObjectOutcome> objects;  ///< one per requested object, found or not
+  std::vector<ObjectOutcome> objects;             ///< one per requested object, found or not
+  std::optional<stocs::TrackingCounts> tracking;  ///< when tracked (trackFrame)
 };
 
 /// Throws stocs::InputError naming the input at fault (cloud, an object's probability image, the
 /// boundary map) for bad encodings, sizes or parameters.
 FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup);
+
+/// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp;
+/// errors as estimateFrame's.
+FrameResult trackFrame(const EstimationJob& job, const EstimationSetup& setup,
+                       stocs::FrameTracker& tracker);
 
 }  // namespace stocs_ros

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stocs/estimation/pipeline.h"
+#include "stocs/tracking/tracking_params.h"
 #include "stocs_ros/stamp_synchronizer.h"
 #include "stocs_ros/symmetric_pose.h"
 
@@ -57,6 +58,7 @@ struct NodeConfig {
   std::string model_cache_setting;    ///< as written: a folder, "" (the default one) or "none"
   std::filesystem::path model_cache;  ///< the folder it names; empty: no cache
   stocs::PipelineParams estimation;
+  stocs::TrackingParams tracking;
 
   /// Every key of the file but the objects and input.channels (lists): keys, ranges, meanings.
   static const stocs::ParamSet<NodeConfig>& schema();

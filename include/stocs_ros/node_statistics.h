@@ -7,7 +7,8 @@
 //   received = matched + dropped + queued,   matched = estimated + replaced + rejected + kept +
 //   in progress.
 // Per estimated frame or service call, the poses published and those rejected for a low confidence
-// (not published; see RejectedObject.msg).
+// (not published; see RejectedObject.msg); with tracking, the instances tracked, redetected and
+// lost, the full detections and the restarts of the tracks.
 // Published as diagnostic_msgs/DiagnosticStatus key-value pairs and logged at shutdown.
 // Thread-safe: subscription callbacks, the worker and the service thread all count.
 
@@ -21,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "stocs/tracking/frame_tracker.h"
 #include "stocs_ros/stamp_synchronizer.h"
 
 namespace stocs_ros {
@@ -46,6 +48,8 @@ class NodeStatistics {
   void serviceCall(bool success);
   /// Time went back and the synchronizer started again (see stamp_synchronizer.h).
   void timeJumpedBack();
+  /// A tracked frame's instances by state, its full detections and whether the tracks restarted.
+  void tracking(const stocs::TrackingCounts& counts);
 
   /// Every counter as a key-value pair; `queued[i]`: messages of input i waiting in the
   /// synchronizer. Level WARN when frames were rejected or messages dropped since the previous
@@ -73,6 +77,7 @@ class NodeStatistics {
   uint64_t service_calls_ = 0, service_failures_ = 0;
   uint64_t time_jumps_ = 0;
   uint64_t poses_published_ = 0, poses_rejected_ = 0;
+  uint64_t tracked_ = 0, redetected_ = 0, lost_ = 0, detections_ = 0, track_resets_ = 0;
   uint64_t reported_problems_ = 0;  // rejected + dropped at the previous status()
 };
 

@@ -74,6 +74,8 @@ class StocsNode {
   void onTimeJump(size_t input, const ros::Time& stamp);
   FrameMessages toFrame(std::vector<InputMessage>& messages, size_t objects) const;
   FrameResult process(const QueuedJob& queued);
+  /// The job's frame through the tracker (tracking.enabled), which starts anew with a new setup.
+  FrameResult track(const QueuedJob& queued);
   void onBackgroundError(std::exception_ptr error);
   void publishStatistics();
   /// Validates an ~estimate request and queues its job on the worker.
@@ -90,16 +92,20 @@ class StocsNode {
 
   std::vector<Input> inputs_;
   std::vector<ros::Subscriber> subscribers_;
-  std::mutex sync_mutex_;  // guards sync_, latest_frame_ and latest_timeline_
+  std::mutex sync_mutex_;  // guards sync_, latest_frame_, latest_timeline_ and latest_stamp_
   std::unique_ptr<StampSynchronizer<InputMessage>> sync_;
   std::optional<FrameMessages> latest_frame_;
   uint64_t latest_timeline_ = 0;                ///< time jumps back before latest_frame_
+  std::optional<ros::Time> latest_stamp_;       ///< of latest_frame_
   std::unique_ptr<NodeStatistics> statistics_;  // made with the inputs' topics
   ros::Publisher statistics_pub_;
   ros::WallTimer statistics_timer_;
 
   OutputPublisher output_;
   SymmetricPoseTracker tracker_;  // worker thread only
+  /// Worker thread only: the tracks of the frames (never of ~estimate calls), for `tracked_setup_`.
+  std::optional<stocs::FrameTracker> frame_tracker_;
+  std::shared_ptr<const EstimationSetup> tracked_setup_;
 
   ros::CallbackQueue service_queue_;
   ros::AsyncSpinner service_spinner_;

@@ -29,43 +29,28 @@ void PipelineParams::validate() const {
   schema().validate(*this);
 }
 
-namespace {
-
-/// The evidence of every instance that needs the frame (see ConfidenceEvidence), then its verdict.
-/// Without `surface` (no camera) nothing confirms a pose.
-void judgeInstances(PoseEstimate& result, const ObjectModel& model, const FreeSpaceCheck* surface,
-                    const CameraIntrinsics* camera, const cv::Mat& probability,
-                    const ConfidenceParams& params) {
-  for (InstancePose& pose : result.instances) {
-    ConfidenceEvidence& e = pose.evidence;
-    if (pose.lcp.facing > 0) {
-      e.matched = std::min(1.0f, static_cast<float>(pose.lcp.matched) / pose.lcp.facing);
-    }
-    const SurfaceComparison c =
-        surface ? surface->compare(model, pose.pose, &probability) : SurfaceComparison{};
-    if (c.seen > 0) {
-      e.surface_confirmed = static_cast<float>(c.confirmed) / static_cast<float>(c.seen);
-      e.free_space = static_cast<float>(c.free) / static_cast<float>(c.seen);
-    }
-    if (c.confirmed > 0) {
-      e.map_support = static_cast<float>(c.support / c.confirmed);
-    }
-    if (camera) e.silhouette = silhouetteShare(model, pose.pose, *camera, probability);
-    judgePose(pose, params);
+void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpaceCheck* surface,
+                   const cv::Mat& probability, const ConfidenceParams& params) {
+  ConfidenceEvidence& e = pose.evidence;
+  if (pose.lcp.facing > 0) {
+    e.matched = std::min(1.0f, static_cast<float>(pose.lcp.matched) / pose.lcp.facing);
   }
+  const SurfaceComparison c =
+      surface ? surface->compare(model, pose.pose, &probability) : SurfaceComparison{};
+  if (c.seen > 0) {
+    e.surface_confirmed = static_cast<float>(c.confirmed) / static_cast<float>(c.seen);
+    e.free_space = static_cast<float>(c.free) / static_cast<float>(c.seen);
+  }
+  if (c.confirmed > 0) {
+    e.map_support = static_cast<float>(c.support / c.confirmed);
+  }
+  if (surface) e.silhouette = silhouetteShare(model, pose.pose, surface->camera(), probability);
+  judgePose(pose, params);
 }
 
-}  // namespace
-
-PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
-                            const PreparedModel& model, const PipelineParams& params,
-                            const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
-  const auto start = std::chrono::steady_clock::now();
-  const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
-  SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
-  if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
-  const double segment_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
+                               const cv::Mat& probability, const PreparedModel& model,
+                               const PipelineParams& params, const CameraIntrinsics* camera) {
   std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
   if (!camera) {                              // also for the confidence evidence
     try {
@@ -80,9 +65,23 @@ PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const c
   const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
   PoseEstimate result = StocsEstimator(model, params.stocs)
                             .estimate(segment, rank_by_free_space ? &*surface : nullptr);
-  judgeInstances(result, model.model, surface ? &*surface : nullptr, camera, probability,
-                 params.confidence);
+  for (InstancePose& pose : result.instances) {
+    judgeInstance(pose, model.model, surface ? &*surface : nullptr, probability, params.confidence);
+  }
   result.segment_points = segment.size();
+  return result;
+}
+
+PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
+                            const PreparedModel& model, const PipelineParams& params,
+                            const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
+  const auto start = std::chrono::steady_clock::now();
+  const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
+  SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
+  if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
+  const double segment_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  PoseEstimate result = estimateOnSegment(segment, cloud, probability, model, params, camera);
   result.stages.segment = segment_seconds;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -98,16 +98,27 @@ void SoftSegmentParams::validate() const {
   schema().validate(*this);
 }
 
+namespace {
+
+/// The pixels a segment scans: `roi` clipped to the image, or the whole image.
+cv::Rect scanArea(const OrganizedCloud& cloud, const std::optional<cv::Rect>& roi) {
+  const cv::Rect image(0, 0, cloud.width, cloud.height);
+  return roi ? (*roi & image) : image;
+}
+
+}  // namespace
+
 int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, float focal_px,
-                       const SoftSegmentParams& params) {
+                       const SoftSegmentParams& params, const std::optional<cv::Rect>& roi) {
   if (!(params.voxel_size > 0 && params.samples_per_voxel > 0)) return 1;
   // The far depth from the pixels on a lattice of every 4th row and column: a 16th of the image
   // settles a percentile, and the far end decides because a voxel's footprint shrinks with depth.
   constexpr int kLattice = 4;
+  const cv::Rect area = scanArea(cloud, roi);
   std::vector<float> depths;
-  for (int v = 0; v < cloud.height; v += kLattice) {
+  for (int v = area.y; v < area.y + area.height; v += kLattice) {
     const float* prob_row = probability.ptr<float>(v);
-    for (int u = 0; u < cloud.width; u += kLattice) {
+    for (int u = area.x; u < area.x + area.width; u += kLattice) {
       const int i = v * cloud.width + u;
       if (prob_row[u] > params.min_probability && cloud.isValid(i)) {
         depths.push_back(cloud.points[static_cast<size_t>(i)].z());
@@ -169,6 +180,7 @@ struct LeftKey {
 struct SegmentInput {
   const OrganizedCloud& cloud;
   const cv::Mat& probability;
+  cv::Rect area;    // the pixels scanned (scanArea)
   int stride;       // scan every stride-th row and column
   float inv_voxel;  // 1 / voxel size; 0: every pixel is its own group
   float threshold;  // epsilon
@@ -220,14 +232,15 @@ void scanRow(const SegmentInput& in, int v, Chunk& chunk, Scanner& scanner, Left
     chunk.kept.push_back({i, g});
   };
   const int block = 16 * stride;
-  int u = 0;
-  for (; u + block <= cloud.width; u += block) {
+  const int end = in.area.x + in.area.width;
+  int u = (in.area.x + stride - 1) / stride * stride;  // the columns of the whole image's lattice
+  for (; u + block <= end; u += block) {
     int any = 0;
     for (int k = 0; k < block; k += stride) any |= prob_row[u + k] > in.threshold;
     if (!any) continue;
     for (int k = 0; k < block; k += stride) visit(u + k);
   }
-  for (; u < cloud.width; u += stride) visit(u);
+  for (; u < end; u += stride) visit(u);
 }
 
 /// Pass 1 on chunk c, with the memory of the thread that takes it.
@@ -244,8 +257,8 @@ void scanChunk(const SegmentInput& in, std::ptrdiff_t c, Chunk& chunk, Scanner& 
     std::fill(scanner.above_key.begin(), scanner.above_key.end(), kNoKey);
   }
   LeftKey left;
-  const int from = static_cast<int>(c) * kChunkRows;
-  const int to = std::min(in.cloud.height, from + kChunkRows);
+  const int from = in.area.y + static_cast<int>(c) * kChunkRows;
+  const int to = std::min(in.area.y + in.area.height, from + kChunkRows);
   for (int v = (from + in.stride - 1) / in.stride * in.stride; v < to; v += in.stride) {
     scanRow(in, v, chunk, scanner, left);
   }
@@ -416,13 +429,17 @@ SoftSegment assembleSegment(const std::vector<Voxel>& groups,
 }  // namespace
 
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
-                             float focal_px, const SoftSegmentParams& params, int threads) {
+                             float focal_px, const SoftSegmentParams& params, int threads,
+                             const std::optional<cv::Rect>& roi) {
   params.validate();
   checkSegmentInputs(cloud, probability, focal_px);
-  const SegmentInput in{
-      cloud, probability, segmentPixelStride(cloud, probability, focal_px, params),
-      params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f, params.min_probability};
-  std::vector<Chunk> chunks(static_cast<size_t>((cloud.height + kChunkRows - 1) / kChunkRows));
+  const SegmentInput in{cloud,
+                        probability,
+                        scanArea(cloud, roi),
+                        segmentPixelStride(cloud, probability, focal_px, params, roi),
+                        params.voxel_size > 0 ? 1.0f / params.voxel_size : 0.0f,
+                        params.min_probability};
+  std::vector<Chunk> chunks(static_cast<size_t>((in.area.height + kChunkRows - 1) / kChunkRows));
   const int team = std::clamp(threads, 1, static_cast<int>(std::max<size_t>(1, chunks.size())));
   scanChunks(in, chunks, team);
   const std::vector<Voxel> groups = mergeChunks(in, chunks);

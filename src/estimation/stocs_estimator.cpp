@@ -108,6 +108,17 @@ void addConsensus(const ObjectModel& model, const Eigen::Vector3f& centre, float
 
 }  // namespace
 
+void PoseEstimate::takeFirstInstance() {
+  found = !instances.empty();
+  if (!found) return;
+  const InstancePose& best = instances.front();
+  pose = best.pose;
+  score = best.score;
+  lcp = best.lcp;
+  refined = best.refined;
+  region = best.region;
+}
+
 const ParamSet<StocsParams>& StocsParams::schema() {
   static const ParamSet<StocsParams> schema =
       ParamSet<StocsParams>()
@@ -267,13 +278,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   addConsensus(model_.model, proximity_.centre(),
                params_.instance_separation * model_.model.diameter, ranked, result.instances);
-  result.found = true;
-  const InstancePose& best = result.instances.front();
-  result.pose = best.pose;
-  result.score = best.score;
-  result.lcp = best.lcp;
-  result.refined = best.refined;
-  result.region = best.region;
+  result.takeFirstInstance();
   result.seconds = secondsSince(start);
   return result;
 }

@@ -71,16 +71,22 @@ std::string defaultConfigYaml() {
 std::string parametersMarkdown() {
   const NodeConfig node;
   stocs::DescribedParams node_keys = NodeConfig::schema().describe(node);
-  node_keys.erase(
-      std::remove_if(node_keys.begin(), node_keys.end(),
-                     [](const auto& p) { return p.first.key.rfind("estimation.", 0) == 0; }),
-      node_keys.end());
+  node_keys.erase(std::remove_if(node_keys.begin(), node_keys.end(),
+                                 [](const auto& p) {
+                                   return p.first.key.rfind("estimation.", 0) == 0 ||
+                                          p.first.key.rfind("tracking.", 0) == 0;
+                                 }),
+                  node_keys.end());
   return fmt::format(
       "{}## Inputs, outputs, cache\n\n{}\n## Estimation\n\nUnder `estimation:` in the file; "
-      "the last column is the option of the `stocs` tool.\n\n{}",
+      "the last column is the option of the `stocs` tool.\n\n{}\n## Tracking\n\nUnder "
+      "`tracking:` in the file ([docs/ros.md](ros.md#tracking)); the last column is the option of "
+      "`stocs estimate`.\n\n{}",
       kMarkdownHead, stocs::paramsMarkdown(node_keys, "", false),
       stocs::paramsMarkdown(stocs::PipelineParams::schema().describe(stocs::PipelineParams()),
-                            "estimation.", true));
+                            "estimation.", true),
+      stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(stocs::TrackingParams()),
+                            "tracking.", true));
 }
 
 }  // namespace stocs_ros

@@ -77,20 +77,51 @@ stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
   return frame;
 }
 
-FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup) {
-  const NodeConfig& config = setup.config;
-  const stocs::Frame frame = convertFrame(job, config);
+namespace {
+
+/// The job's estimation parameters (its time budget instead of the configured one).
+stocs::PipelineParams jobParams(const EstimationJob& job, const NodeConfig& config) {
   stocs::PipelineParams params = config.estimation;
   if (job.time_budget) params.stocs.time_budget = *job.time_budget;
-  std::vector<stocs::FrameObject> objects;
-  for (size_t i : job.objects) objects.push_back({config.objects[i].name, &setup.models[i]});
+  return params;
+}
 
+/// The job's objects for the core's frame loop.
+std::vector<stocs::FrameObject> jobObjects(const EstimationJob& job, const EstimationSetup& setup) {
+  std::vector<stocs::FrameObject> objects;
+  for (size_t i : job.objects) objects.push_back({setup.config.objects[i].name, &setup.models[i]});
+  return objects;
+}
+
+}  // namespace
+
+FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup) {
+  const stocs::Frame frame = convertFrame(job, setup.config);
   FrameResult result;
   result.header = job.frame.header();
-  std::vector<stocs::ObjectResult> estimates = stocs::estimateFrame(frame, objects, params);
+  std::vector<stocs::ObjectResult> estimates =
+      stocs::estimateFrame(frame, jobObjects(job, setup), jobParams(job, setup.config));
   for (size_t k = 0; k < estimates.size(); ++k) {
-    result.objects.push_back({job.objects[k], std::move(estimates[k].estimate)});
+    result.objects.push_back({job.objects[k], std::move(estimates[k].estimate), {}});
   }
+  return result;
+}
+
+FrameResult trackFrame(const EstimationJob& job, const EstimationSetup& setup,
+                       stocs::FrameTracker& tracker) {
+  const stocs::Frame frame = convertFrame(job, setup.config);
+  FrameResult result;
+  result.header = job.frame.header();
+  std::optional<double> previous_input;
+  if (job.previous_input) previous_input = job.previous_input->toSec();
+  stocs::FrameTracking tracked =
+      tracker.track(frame, jobObjects(job, setup), jobParams(job, setup.config),
+                    result.header.stamp.toSec(), previous_input);
+  for (size_t k = 0; k < tracked.objects.size(); ++k) {
+    stocs::TrackedObject& t = tracked.objects[k];
+    result.objects.push_back({job.objects[k], std::move(t.result.estimate), std::move(t.states)});
+  }
+  result.tracking = tracked.counts;
   return result;
 }
 

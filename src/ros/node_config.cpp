@@ -320,7 +320,8 @@ const stocs::ParamSet<NodeConfig>& NodeConfig::schema() {
           .nest(&NodeConfig::output, "output", OutputConfig::schema(), "Outputs")
           .add(&NodeConfig::model_cache_setting, "model_cache", "", std::nullopt,
                "folder for prepared models; empty: $XDG_CACHE_HOME/stocs_ros; none: off")
-          .nest(&NodeConfig::estimation, "estimation", stocs::PipelineParams::schema());
+          .nest(&NodeConfig::estimation, "estimation", stocs::PipelineParams::schema())
+          .nest(&NodeConfig::tracking, "tracking", stocs::TrackingParams::schema(), "Tracking");
   return schema;
 }
 

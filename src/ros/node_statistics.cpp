@@ -79,6 +79,15 @@ void NodeStatistics::timeJumpedBack() {
   ++time_jumps_;
 }
 
+void NodeStatistics::tracking(const stocs::TrackingCounts& counts) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  tracked_ += static_cast<uint64_t>(counts.tracked);
+  redetected_ += static_cast<uint64_t>(counts.redetected);
+  lost_ += static_cast<uint64_t>(counts.lost);
+  detections_ += static_cast<uint64_t>(counts.detections);
+  track_resets_ += counts.reset;
+}
+
 uint64_t NodeStatistics::droppedTotal() const {
   uint64_t total = 0;
   for (const InputCounts& in : inputs_) {
@@ -123,6 +132,11 @@ diagnostic_msgs::DiagnosticStatus NodeStatistics::status(const std::string& name
   add("time jumps back", time_jumps_);
   add("poses published", poses_published_);
   add("poses rejected (low confidence)", poses_rejected_);
+  add("poses tracked", tracked_);
+  add("poses redetected", redetected_);
+  add("poses lost", lost_);
+  add("full detections while tracking", detections_);
+  add("tracking resets", track_resets_);
 
   const uint64_t problems = rejected_total_ + droppedTotal();
   out.level = problems > reported_problems_ ? diagnostic_msgs::DiagnosticStatus::WARN
@@ -147,9 +161,10 @@ std::string NodeStatistics::summary() const {
   }
   return line + fmt::format(
                     "; {} service calls ({} failed); time went back {} times; {} poses published, "
-                    "{} rejected for a low confidence",
+                    "{} rejected for a low confidence; tracking: {} tracked, {} redetected, {} "
+                    "lost, {} full detections, {} resets",
                     service_calls_, service_failures_, time_jumps_, poses_published_,
-                    poses_rejected_);
+                    poses_rejected_, tracked_, redetected_, lost_, detections_, track_resets_);
 }
 
 }  // namespace stocs_ros

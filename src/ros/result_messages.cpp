@@ -88,6 +88,20 @@ Message identifiedMessage(const FoundPose& f, const EstimationSetup& setup) {
   return m;
 }
 
+/// How `f`'s pose came about (ObjectPose::state): detected unless its object was tracked.
+uint8_t stateOf(const FoundPose& f) {
+  const std::vector<stocs::TrackState>& states = f.outcome->states;
+  if (f.instance >= states.size()) return ObjectPose::DETECTED;
+  return states[f.instance] == stocs::TrackState::kTracked ? ObjectPose::TRACKED
+                                                           : ObjectPose::REDETECTED;
+}
+
+/// Whether `f` is a tracked instance that is lost (RejectedObject::lost).
+bool lostPose(const FoundPose& f) {
+  const std::vector<stocs::TrackState>& states = f.outcome->states;
+  return f.instance < states.size() && states[f.instance] == stocs::TrackState::kLost;
+}
+
 /// Every pose of the result whose acceptance is `accepted`.
 std::vector<FoundPose> posesAccepted(const FrameResult& result, bool accepted) {
   std::vector<FoundPose> out;
@@ -136,11 +150,13 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
     p.pose.covariance = covarianceMsg(covarianceOf(f, setup));
     p.estimation_time = f.outcome->estimate.seconds;
     p.hypotheses_verified = f.outcome->estimate.hypotheses;
+    p.state = stateOf(f);
     out.objects.push_back(p);
   }
   for (const FoundPose& f : rejectedPoses(result)) {
     RejectedObject r = identifiedMessage<RejectedObject>(f, setup);
     r.reason = rejectionReason(f);
+    r.lost = lostPose(f);
     out.rejected.push_back(r);
   }
   return out;

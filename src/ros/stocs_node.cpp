@@ -238,11 +238,13 @@ void StocsNode::onMessage(size_t input, const ros::Time& stamp, InputMessage mes
     statistics_->matched();
     latest_frame_ = toFrame(match->messages, current->config.objects.size());
     latest_timeline_ = sync_->timeJumps();
+    const std::optional<ros::Time> previous = latest_stamp_;
+    latest_stamp_ = match->stamp;
     if (!current->config.output.estimate_on_frames) {
       statistics_->kept();
       return;
     }
-    job = QueuedJob{{*latest_frame_, {}, std::nullopt}, current, false, latest_timeline_};
+    job = QueuedJob{{*latest_frame_, {}, std::nullopt, previous}, current, false, latest_timeline_};
   }
   for (size_t i = 0; i < current->config.objects.size(); ++i) job->job.objects.push_back(i);
   if (worker_->offer(std::move(*job))) {
@@ -290,8 +292,18 @@ FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t obj
   return frame;
 }
 
+FrameResult StocsNode::track(const QueuedJob& queued) {
+  if (!frame_tracker_ || tracked_setup_ != queued.setup) {
+    frame_tracker_.emplace(queued.setup->config.tracking);  // a reload may change every object
+    tracked_setup_ = queued.setup;
+  }
+  return trackFrame(queued.job, *queued.setup, *frame_tracker_);
+}
+
 FrameResult StocsNode::process(const QueuedJob& queued) {
-  FrameResult result = estimateFrame(queued.job, *queued.setup);
+  // ~estimate calls detect: a call on an older frame or on given inputs must not move the tracks.
+  const bool tracking = !queued.requested && queued.setup->config.tracking.enabled;
+  FrameResult result = tracking ? track(queued) : estimateFrame(queued.job, *queued.setup);
   for (ObjectOutcome& o : result.objects) {
     stocs::PoseEstimate& e = o.estimate;
     if (e.found) {
@@ -300,6 +312,7 @@ FrameResult StocsNode::process(const QueuedJob& queued) {
   }
   output_.publish(result, *queued.setup, queued.timeline);
   statistics_->poses(foundPoses(result).size(), rejectedPoses(result).size());
+  if (result.tracking) statistics_->tracking(*result.tracking);
   if (!queued.requested) statistics_->estimated();
   return result;
 }

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <set>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "stocs/io/bop_results.h"
 #include "stocs/methods/pose_method.h"
 #include "stocs/sim/probability_source.h"
+#include "stocs/tracking/frame_tracker.h"
 #include "stocs/util/error.h"
 
 namespace stocs::tools {
@@ -38,8 +40,10 @@ struct EstimateOptions {
   std::string targets;
   bool warm_up = false;
   int repeats = 1;
+  double frame_rate = 30;  ///< --track: images per second, by im_id
   MethodOptions method_options;
   PipelineParams params;
+  TrackingParams tracking;
   ModelOptions model;
 };
 
@@ -78,6 +82,7 @@ struct TimedResult {
   int obj = 0;
   PoseEstimate estimate;
   double cpu_seconds = 0;
+  std::vector<TrackState> states;  ///< --track: per instance
 };
 
 /// `stocs estimate`: every image of the selected scenes in turn, each through the frame loop
@@ -91,7 +96,9 @@ class EstimateRun {
         probabilities_(makeProbabilitySource(o.prob, dataset_, o.params.stocs.seed)),
         info_(dataset_.modelsInfo()),
         cache_(o.model.cache()),
-        warm_up_(o.warm_up) {}
+        warm_up_(o.warm_up) {
+    if (o.tracking.enabled) tracker_.emplace(o.tracking);
+  }
 
   int run() {
     int loaded_scene = -1;
@@ -100,6 +107,7 @@ class EstimateRun {
     for (const auto& [image, objects] : selection()) {
       const auto [scene, im] = image;
       if (scene != loaded_scene) {
+        if (tracker_) tracker_->reset();  // each scene is a stream of its own
         cameras = dataset_.sceneCameras(scene);
         gt = dataset_.sceneGroundTruth(scene);
         loaded_scene = scene;
@@ -118,6 +126,12 @@ class EstimateRun {
     fmt::print(stderr, "{} of {} objects found{}; results in {}\n", found_, targets_,
                rejected_ ? fmt::format(", {} poses rejected below min_confidence", rejected_) : "",
                o_.out);
+    if (tracker_) {
+      fmt::print(stderr,
+                 "tracking: {} poses tracked, {} redetected, {} lost; {} full detections of {} "
+                 "(image, object) pairs\n",
+                 counts_.tracked, counts_.redetected, counts_.lost, counts_.detections, targets_);
+    }
     return 0;
   }
 
@@ -222,13 +236,18 @@ class EstimateRun {
     for (int repeat = 0; repeat < o_.repeats; ++repeat) {
       const auto start = std::chrono::steady_clock::now();
       frame.cloud = cloudFromDepth(depth, *frame.camera, metres_per_unit);
-      std::vector<ObjectResult> results = estimateFrame(frame, objects, o_.params, estimate);
+      std::vector<ObjectResult> results = tracker_
+                                              ? trackImage(image, frame, objects, timed)
+                                              : estimateFrame(frame, objects, o_.params, estimate);
       image_times.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       for (size_t k = 0; k < results.size(); ++k) {
         wall[k].push_back(results[k].estimate.seconds);
         cpu[k].push_back(results[k].cpu_seconds);
-        if (repeat == 0) timed[k] = {std::stoi(results[k].name), std::move(results[k].estimate)};
+        if (repeat == 0) {
+          timed[k].obj = std::stoi(results[k].name);
+          timed[k].estimate = std::move(results[k].estimate);
+        }
       }
     }
     for (size_t k = 0; k < timed.size(); ++k) {
@@ -237,6 +256,24 @@ class EstimateRun {
     }
     image_seconds_ = quantile(image_times, 0.5);
     return timed;
+  }
+
+  /// The objects of the image as the next frame of the scene's stream (--track; one repeat): the
+  /// tracker's estimates, with the states of their instances put in `timed`.
+  std::vector<ObjectResult> trackImage(const ImageTargets& image, const Frame& frame,
+                                       const std::vector<FrameObject>& objects,
+                                       std::vector<TimedResult>& timed) {
+    FrameTracking t = tracker_->track(frame, objects, o_.params, image.im / o_.frame_rate);
+    std::vector<ObjectResult> results;
+    for (size_t k = 0; k < t.objects.size(); ++k) {
+      timed[k].states = std::move(t.objects[k].states);
+      results.push_back(std::move(t.objects[k].result));
+    }
+    counts_.tracked += t.counts.tracked;
+    counts_.redetected += t.counts.redetected;
+    counts_.lost += t.counts.lost;
+    counts_.detections += t.counts.detections;
+    return results;
   }
 
   /// Writes the image's results and prints a line per object.
@@ -260,12 +297,14 @@ class EstimateRun {
         continue;
       }
       ++found_;
-      fmt::print(stderr, "{}{}\n", head, describePoses(image, t.obj, e));
+      fmt::print(stderr, "{}{}\n", head, describePoses(image, t, e));
     }
   }
 
   /// The object's poses as result rows, described with their ADD-S to the nearest instance.
-  std::string describePoses(const ImageTargets& image, int obj, const PoseEstimate& e) {
+  std::string describePoses(const ImageTargets& image, const TimedResult& t,
+                            const PoseEstimate& e) {
+    const int obj = t.obj;
     const std::vector<BopGtInstance>& instances = *image.instances;
     const auto it = info_.find(obj);
     const double diameter = it != info_.end() ? it->second.diameter_mm : 0;
@@ -277,6 +316,7 @@ class EstimateRun {
       const InstancePose& instance = e.instances[k];
       const RigidPose pose = toBop(instance.pose);
       if (k > 0) line += fmt::format("\n  instance {}: ", k);
+      if (k < t.states.size()) line += fmt::format("{}, ", toString(t.states[k]));
       line += fmt::format("score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm", instance.score, pose.t.x(),
                           pose.t.y(), pose.t.z());
       // A method with a calibrated confidence writes it as the BOP score, and only accepted poses.
@@ -316,12 +356,30 @@ class EstimateRun {
   std::map<int, PreparedModel> models_;
   std::vector<BopResult> results_;
   std::vector<ObjectRun> object_runs_;
+  std::optional<FrameTracker> tracker_;  // --track
+  TrackingCounts counts_;                // --track: summed over the images
   double image_seconds_ = 0;
   int targets_ = 0, found_ = 0, rejected_ = 0;
 };
 
+/// Throws InputError for --track with options it cannot honour.
+void checkTrackingOptions(const EstimateOptions& o) {
+  validateSchemaOptions(TrackingParams::schema(), o.tracking);
+  if (!o.tracking.enabled) return;
+  if (o.method != "stocs") {
+    throw InputError(fmt::format("--track tracks with StoCS; --method {} cannot track", o.method));
+  }
+  if (o.repeats != 1) {
+    throw InputError(fmt::format(
+        "--track processes each image once, as the next frame of its scene; --repeats {} would "
+        "track the same image again",
+        o.repeats));
+  }
+}
+
 int runEstimate(const EstimateOptions& o) {
   validatePipelineOptions(o.params);
+  checkTrackingOptions(o);
   return EstimateRun(o).run();
 }
 
@@ -360,6 +418,12 @@ Command registerEstimate(CLI::App& app) {
          "repeats (single runs of a few milliseconds vary by a third on a shared machine), "
          "poses those of the first")
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--frame-rate", o->frame_rate,
+                  "With --track: images per second; image im_id is the frame at im_id / rate s")
+      ->check(CLI::PositiveNumber);
+  static const ParamSet<EstimateOptions> tracking = ParamSet<EstimateOptions>().nest(
+      &EstimateOptions::tracking, "tracking", TrackingParams::schema(), "Tracking (--track)");
+  addSchemaOptions(*cmd, tracking, *o);
   addModelOptions(*cmd, o->model);
   addPipelineOptions(*cmd, o->params);
   return {cmd, [o] { return runEstimate(*o); }};

@@ -185,6 +185,26 @@ TEST_F(SoftSegmentTest, ThreadsDoNotChangeTheSegment) {
   EXPECT_EQ(one.probability, three.probability);
 }
 
+TEST_F(SoftSegmentTest, ARegionOfInterestKeepsThePixelsInsideIt) {
+  SoftSegmentParams params;
+  params.voxel_size = 0;
+  const float f = static_cast<float>(k_.fx);
+  const SoftSegment all = buildSoftSegment(cloud_, prob_, f, params);
+  const SoftSegment whole =
+      buildSoftSegment(cloud_, prob_, f, params, 1, cv::Rect(-5, -5, 200, 200));
+  EXPECT_EQ(whole.pixel, all.pixel);
+  EXPECT_EQ(whole.points, all.points);
+  const cv::Rect roi(43, 17, 30, 21);  // across the segment's left edge, not on a chunk's rows
+  const SoftSegment part = buildSoftSegment(cloud_, prob_, f, params, 2, roi);
+  std::vector<int> inside;
+  for (int pixel : all.pixel) {
+    if (roi.contains(cv::Point(pixel % 100, pixel / 100))) inside.push_back(pixel);
+  }
+  ASSERT_EQ(inside.size(), 23u * 21);
+  EXPECT_EQ(part.pixel, inside);
+  EXPECT_TRUE(buildSoftSegment(cloud_, prob_, f, params, 1, cv::Rect(200, 0, 10, 10)).empty());
+}
+
 TEST_F(SoftSegmentTest, VoxelsAverageTheirPixels) {
   prob_(cv::Rect(50, 0, 50, 40)) = 0.4;
   SoftSegmentParams params;

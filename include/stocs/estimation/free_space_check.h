@@ -58,6 +58,8 @@ class FreeSpaceCheck {
   SurfaceComparison compare(const ObjectModel& model, const Eigen::Isometry3f& pose,
                             const cv::Mat* probability = nullptr) const;
 
+  const CameraIntrinsics& camera() const { return camera_; }
+
  private:
   const OrganizedCloud& cloud_;
   const CameraIntrinsics& camera_;

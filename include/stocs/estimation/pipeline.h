@@ -2,6 +2,7 @@
 // One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
 // the benchmark and the ROS node so all of them run exactly the same estimation.
 
+#include "stocs/estimation/free_space_check.h"
 #include "stocs/estimation/pose_confidence.h"
 #include "stocs/estimation/soft_segment.h"
 #include "stocs/estimation/stocs_estimator.h"
@@ -39,5 +40,17 @@ PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const c
                             const PreparedModel& model, const PipelineParams& params,
                             const cv::Mat* boundary_map = nullptr,
                             const CameraIntrinsics* camera = nullptr);
+
+/// estimateObject after its soft segment: StoCS on `segment` (of `cloud` and `probability`), each
+/// instance judged (judgeInstance). Leaves the estimate's segment time and `seconds` to the caller.
+PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
+                               const cv::Mat& probability, const PreparedModel& model,
+                               const PipelineParams& params, const CameraIntrinsics* camera);
+
+/// The confidence evidence of `pose` that needs the frame (its `lcp` must be set; see
+/// ConfidenceEvidence; consensus is left as it is), then its verdict (judgePose). Without
+/// `surface` (no camera) nothing confirms a pose.
+void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpaceCheck* surface,
+                   const cv::Mat& probability, const ConfidenceParams& params);
 
 }  // namespace stocs

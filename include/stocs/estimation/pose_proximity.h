@@ -27,6 +27,8 @@ class PoseProximity {
   /// The point whose move is the first term of the bound: when it moves by the distance or more,
   /// within() is false, which callers can test first with cached images of the centre.
   const Eigen::Vector3f& centre() const { return centre_; }
+  /// The radius of the sphere about centre() that holds every model point (metres).
+  float radius() const { return radius_; }
 
  private:
   Eigen::Vector3f centre_ = Eigen::Vector3f::Zero();  // of the model points' bounding box

@@ -10,6 +10,8 @@
 // 0.6 m, and a few of them place its centroid as well as all 81, in less time.
 
 #include <Eigen/Core>
+#include <opencv2/core/types.hpp>
+#include <optional>
 #include <vector>
 
 #include "stocs/geometry/normals.h"
@@ -59,14 +61,18 @@ struct SoftSegment {
 /// footprint. Pixels without depth or without a normal are left out; the result may be empty.
 /// Throws InputError on a size or type mismatch. The pixel scan, the representatives and the
 /// normals run on `threads` threads (the merge of the chunks between them in image order); the
-/// result does not depend on it.
+/// result does not depend on it. With `roi`, only the pixels inside it (clipped to the image) are
+/// scanned: a tracker segments the neighbourhood of an object's predicted image alone.
 SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probability,
-                             float focal_px, const SoftSegmentParams& params, int threads = 1);
+                             float focal_px, const SoftSegmentParams& params, int threads = 1,
+                             const std::optional<cv::Rect>& roi = std::nullopt);
 
-/// The pixel stride of buildSoftSegment's scan (see SoftSegmentParams::samples_per_voxel): 1 when
-/// no pixel is above epsilon. Expects the checks of buildSoftSegment passed.
+/// The pixel stride of buildSoftSegment's scan (see SoftSegmentParams::samples_per_voxel) over
+/// `roi` (clipped to the image): 1 when no pixel is above epsilon. Expects the checks of
+/// buildSoftSegment passed.
 int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, float focal_px,
-                       const SoftSegmentParams& params);
+                       const SoftSegmentParams& params,
+                       const std::optional<cv::Rect>& roi = std::nullopt);
 
 /// Splits the segment into instance regions with a boundary map (CV_8UC1, same size as the image;
 /// values >= 128 are object interior, lower values are boundaries, as in the StoCS `edge.png` and

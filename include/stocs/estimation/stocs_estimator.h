@@ -149,6 +149,10 @@ struct PoseEstimate {
   /// Wall time: StocsEstimator::estimate alone, or with the soft segment (estimateObject) or the
   /// method's own steps (PoseMethod).
   double seconds = 0;
+
+  /// Sets `found` (whether there is an instance) and, from the first instance, the pose, score,
+  /// objective, refined flag and region.
+  void takeFirstInstance();
 };
 
 class StocsEstimator {

@@ -13,6 +13,7 @@
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/cloud_conversion.h"
 #include "stocs_ros/frame_estimation.h"
+#include "stocs_ros/result_messages.h"
 #include "test_support.h"
 
 namespace stocs_ros {
@@ -46,11 +47,11 @@ class FrameEstimation : public ::testing::Test {
     return cv_bridge::CvImage(header, encoding, pixels).toImageMsg();
   }
 
-  static EstimationJob cloudJob() {
+  static EstimationJob cloudJob(double stamp = 3.0) {
     EstimationJob job;
     auto cloud = boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(frame_->cloud, cv::Mat()));
     cloud->header.frame_id = "camera";
-    cloud->header.stamp = ros::Time(3.0);
+    cloud->header.stamp = ros::Time(stamp);
     job.frame.cloud = cloud;
     job.frame.probabilities = {image("32FC1", frame_->probabilities[0])};
     job.objects = {0};
@@ -135,6 +136,39 @@ TEST_F(FrameEstimation, DepthImageAndMultichannelImageGiveTheKnownPose) {
   job.frame.boundary = image("mono8", cv::Mat(frame_->depth.size(), CV_8UC1, cv::Scalar(255)));
   job.objects = {0};
   expectFoundNearTruth(estimateFrame(job, *s));
+}
+
+TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
+  const auto s = setup("tracking: {enabled: true}\n");
+  ASSERT_TRUE(s->config.tracking.enabled);
+  stocs::FrameTracker tracker(s->config.tracking);
+  const FrameResult first = trackFrame(cloudJob(3.0), *s, tracker);
+  expectFoundNearTruth(first);
+  EXPECT_EQ(first.objects[0].states,
+            std::vector<stocs::TrackState>{stocs::TrackState::kRedetected});
+  ASSERT_TRUE(first.tracking);
+  EXPECT_EQ(first.tracking->redetected, 1);
+  EXPECT_EQ(toObjectPoseArray(first, *s).objects.at(0).state, ObjectPose::REDETECTED);
+
+  const FrameResult next = trackFrame(cloudJob(3.0 + 1.0 / 30), *s, tracker);
+  expectFoundNearTruth(next);
+  EXPECT_EQ(next.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kTracked});
+  EXPECT_EQ(toObjectPoseArray(next, *s).objects.at(0).state, ObjectPose::TRACKED);
+
+  // The map vanishes: the box is lost, listed as rejected and lost, with no pose published.
+  EstimationJob gone = cloudJob(3.0 + 2.0 / 30);
+  gone.frame.probabilities[0] = image("32FC1", cv::Mat(240, 320, CV_32FC1, cv::Scalar(0)));
+  const FrameResult lost = trackFrame(gone, *s, tracker);
+  EXPECT_EQ(lost.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kLost});
+  const ObjectPoseArray lost_msg = toObjectPoseArray(lost, *s);
+  EXPECT_TRUE(lost_msg.objects.empty());
+  ASSERT_EQ(lost_msg.rejected.size(), 1u);
+  EXPECT_TRUE(lost_msg.rejected[0].lost);
+  EXPECT_EQ(lost_msg.rejected[0].reason.rfind("lost: ", 0), 0u) << lost_msg.rejected[0].reason;
+
+  // Detection without tracking says so.
+  EXPECT_EQ(toObjectPoseArray(estimateFrame(cloudJob(), *s), *s).objects.at(0).state,
+            ObjectPose::DETECTED);
 }
 
 TEST_F(FrameEstimation, BadInputsAreNamed) {

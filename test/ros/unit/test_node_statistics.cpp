@@ -59,6 +59,30 @@ TEST(NodeStatistics, CountsEveryMessageAndFrameOnce) {
   EXPECT_NE(stats.summary().find("time went back 1 times"), std::string::npos) << stats.summary();
 }
 
+TEST(NodeStatistics, CountsTrackedRedetectedAndLostPoses) {
+  NodeStatistics stats({"/cloud"});
+  stocs::TrackingCounts first;
+  first.redetected = 2;
+  first.detections = 2;
+  stocs::TrackingCounts next;
+  next.tracked = 1;
+  next.lost = 1;
+  next.detections = 1;
+  next.reset = true;
+  stats.tracking(first);
+  stats.tracking(next);
+  std::map<std::string, std::string> v = values(stats.status("/stocs", {0}));
+  EXPECT_EQ(v["poses tracked"], "1");
+  EXPECT_EQ(v["poses redetected"], "2");
+  EXPECT_EQ(v["poses lost"], "1");
+  EXPECT_EQ(v["full detections while tracking"], "3");
+  EXPECT_EQ(v["tracking resets"], "1");
+  EXPECT_NE(stats.summary().find("tracking: 1 tracked, 2 redetected, 1 lost, 3 full detections, 1 "
+                                 "resets"),
+            std::string::npos)
+      << stats.summary();
+}
+
 TEST(NodeStatistics, WarnsOncePerNewProblem) {
   NodeStatistics stats({"/cloud"});
   EXPECT_EQ(stats.status("n", {0}).level, diagnostic_msgs::DiagnosticStatus::OK);

@@ -32,7 +32,7 @@ EstimationSetup twoObjects() {
 }
 
 ObjectOutcome outcome(size_t object, bool found, float x) {
-  ObjectOutcome o{object, {}};
+  ObjectOutcome o{object, {}, {}};
   o.estimate.found = found;
   o.estimate.pose.translation() = Eigen::Vector3f(x, 0, 1);
   o.estimate.score = 0.25f;

@@ -1,0 +1,74 @@
+#pragma once
+// Tracking of one object's instances from frame to frame (issue 30). Each track keeps the last
+// accepted pose, a damped constant velocity and a stable instance index. Per frame:
+//   1. every live track is predicted and refined on the segment of its predicted box
+//      (SegmentFollower) and judged by the calibrated confidence: accepted -> tracked;
+//   2. a track that failed is searched for in the box with StoCS first (local search), then with
+//      full detection (estimateObject); an accepted pose there -> redetected, else -> lost;
+//   3. full detection also runs when there is no track, while a track is lost (detection keeps
+//      trying), and every TrackingParams::redetect_every frames, so that a track that slid onto a
+//      look-alike is replaced by a detection the confidence prefers (FrameTracker lets one object
+//      a frame do so, so that the objects' schedules do not all fall on one frame).
+// Detected poses continue the track whose model centre is nearest (TrackingParams::
+// match_distance), so an instance keeps its index while it is seen; further accepted poses start
+// new tracks up to StocsParams::instances.
+
+#include <string>
+#include <vector>
+
+#include "stocs/estimation/frame.h"
+#include "stocs/tracking/motion_model.h"
+#include "stocs/tracking/tracking_params.h"
+
+namespace stocs {
+
+enum class TrackState {
+  kTracked,     ///< followed from its predicted pose, and accepted
+  kRedetected,  ///< found again (or for the first time) by StoCS, and accepted
+  kLost,        ///< no accepted pose this frame: not published; detection keeps trying
+};
+
+/// "tracked", "redetected", "lost".
+const char* toString(TrackState state);
+
+struct Track {
+  int index = 0;  ///< stable instance index: TF <object>_<index> for index > 0
+  TrackState state = TrackState::kRedetected;
+  InstancePose pose;  ///< the last accepted pose
+  ConstantVelocity motion;
+};
+
+/// One object's outcome of one frame.
+struct ObjectTracking {
+  /// One instance per track in index order (instance k is track k): accepted unless lost (a lost
+  /// instance holds the last accepted pose, rejected with the reason). The counters and stage
+  /// times of the last search that ran (full detection, else the local search), else the segment
+  /// size of the followed box; `seconds` is the whole step.
+  PoseEstimate estimate;
+  std::vector<TrackState> states;  ///< per instance
+  bool searched = false;           ///< the local search ran
+  bool detected = false;           ///< full detection ran
+};
+
+class ObjectTracker {
+ public:
+  /// Throws InputError naming the first parameter out of range.
+  explicit ObjectTracker(const TrackingParams& params);
+
+  /// The object in a new frame `dt` seconds after the previous one. The scheduled full detection
+  /// runs only where `may_redetect` allows it (else on a later frame).
+  ObjectTracking update(const ObjectInput& in, double dt, bool may_redetect = true);
+  /// Whether the schedule (TrackingParams::redetect_every) asks for full detection in the next
+  /// frame.
+  bool redetectionDue() const;
+
+  const std::vector<Track>& tracks() const { return tracks_; }
+
+ private:
+  class Step;
+  TrackingParams params_;
+  std::vector<Track> tracks_;  // by index: indices are 0, 1, ... in order of first detection
+  int frames_since_detection_ = 0;
+};
+
+}  // namespace stocs

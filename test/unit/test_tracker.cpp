@@ -1,0 +1,307 @@
+// Tracking (issue 30): a frame whose object moved a little is tracked from the predicted pose, an
+// object whose map vanishes goes lost and is found again, a time jump ends the tracks, and the
+// constant-velocity prediction and the predicted box.
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/eval/pose_metrics.h"
+#include "stocs/io/ply_writer.h"
+#include "stocs/stocs.h"
+#include "stocs/tracking/segment_follower.h"
+#include "stocs/util/error.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+constexpr double kFramePeriod = 1.0 / 30;
+
+/// The pose moved by `mm` millimetres along a fixed direction and turned by `deg` degrees about a
+/// fixed axis through the object's origin.
+Eigen::Isometry3f moved(const Eigen::Isometry3f& pose, float mm, float deg) {
+  Eigen::Isometry3f out = pose;
+  out.translation() += Eigen::Vector3f(1, -0.5f, 0.3f).normalized() * (mm / 1000);
+  out.linear() = Eigen::AngleAxisf(deg * static_cast<float>(M_PI) / 180,
+                                   Eigen::Vector3f(0.2f, 1, 0.4f).normalized()) *
+                 pose.linear();
+  return out;
+}
+
+class TrackerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string file = (test::scratchDir("tracker") / "block.ply").string();
+    writePly(file, asymmetricMesh(), 1000.0f);
+    estimator_.addObject("block", file);
+    model_ = estimator_.model("block");
+    truth_ = test::viewingPose(0.6f);
+  }
+
+  /// Copies of the block rendered at the poses, the map `block` holding each one's value on it.
+  static Frame blocksAt(const std::vector<std::pair<Eigen::Isometry3f, float>>& blocks) {
+    const CameraIntrinsics camera = test::testCamera();
+    std::vector<test::PlacedMesh> meshes;
+    for (const auto& [pose, map] : blocks) meshes.push_back({asymmetricMesh(), pose});
+    cv::Mat labels;
+    const cv::Mat depth = test::renderDepth(meshes, camera, &labels);
+    Frame frame = Frame::fromDepth(depth, camera, 1.0);
+    cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+    for (size_t k = 0; k < blocks.size(); ++k) {
+      probability.setTo(blocks[k].second, labels == static_cast<int>(k + 1));
+    }
+    frame.probabilities["block"] = probability;
+    return frame;
+  }
+
+  /// The block rendered at `pose`, with a map of 0.9 on it (or none at all).
+  static Frame frameAt(const Eigen::Isometry3f& pose, bool with_map = true) {
+    return blocksAt({{pose, with_map ? 0.9f : 0.0f}});
+  }
+
+  FrameTracking track(FrameTracker& tracker, const Frame& frame, double stamp) const {
+    return tracker.track(frame, {{"block", model_.get()}}, estimator_.params(), stamp);
+  }
+
+  double adds(const Eigen::Isometry3f& estimate, const Eigen::Isometry3f& truth) const {
+    return addsError(model_->model.points,
+                     {estimate.linear().cast<double>(), estimate.translation().cast<double>()},
+                     {truth.linear().cast<double>(), truth.translation().cast<double>()});
+  }
+
+  Estimator estimator_{PipelineParams{}, ModelCache(test::scratchDir("tracker_cache"))};
+  std::shared_ptr<const PreparedModel> model_;
+  Eigen::Isometry3f truth_;
+};
+
+TEST_F(TrackerTest, APerturbedFrameIsTrackedFromThePrediction) {
+  FrameTracker tracker{TrackingParams{}};
+  const FrameTracking first = track(tracker, frameAt(truth_), 0.0);
+  ASSERT_EQ(first.objects.size(), 1u);
+  ASSERT_EQ(first.objects[0].states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(first.objects[0].detected);
+  EXPECT_EQ(first.counts.redetected, 1);
+
+  // The object moved 6 mm and turned 4 degrees by the next frame.
+  const Eigen::Isometry3f next = moved(truth_, 6, 4);
+  const FrameTracking second = track(tracker, frameAt(next), kFramePeriod);
+  const TrackedObject& o = second.objects[0];
+  ASSERT_EQ(o.states, std::vector<TrackState>{TrackState::kTracked});
+  EXPECT_FALSE(o.detected);
+  EXPECT_EQ(second.counts.tracked, 1);
+  EXPECT_EQ(second.counts.detections, 0);
+  const InstancePose& pose = o.result.estimate.instances.at(0);
+  EXPECT_TRUE(pose.accepted) << pose.rejection;
+  EXPECT_LT(adds(pose.pose, next), 0.02 * model_->model.diameter);
+  EXPECT_EQ(pose.evidence.consensus, 0.0f);  // a followed pose has no bases
+  EXPECT_GT(o.result.estimate.segment_points, 0u);
+}
+
+TEST_F(TrackerTest, AnObjectMovingSteadilyStaysTrackedAndAccurate) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 0.0);
+  // 8 mm and 3 degrees a frame (24 cm/s, 90 deg/s at 30 Hz): the velocity carries the prediction.
+  for (int k = 1; k <= 5; ++k) {
+    const Eigen::Isometry3f at = moved(truth_, 8.0f * k, 3.0f * k);
+    const FrameTracking t = track(tracker, frameAt(at), k * kFramePeriod);
+    ASSERT_EQ(t.objects[0].states, std::vector<TrackState>{TrackState::kTracked}) << "frame " << k;
+    EXPECT_LT(adds(t.objects[0].result.estimate.instances.at(0).pose, at),
+              0.02 * model_->model.diameter)
+        << "frame " << k;
+  }
+  const Track& track_now = tracker.objects().at("block").tracks().at(0);
+  EXPECT_GT(track_now.motion.linear().norm(), 0.15f);  // m/s, measured from the poses
+}
+
+TEST_F(TrackerTest, InstancesKeepTheirIndicesWhileTheyMove) {
+  PipelineParams params = estimator_.params();
+  params.stocs.instances = 2;
+  // Two copies of the block side by side.
+  Eigen::Isometry3f left = truth_, right = truth_;
+  left.translation().x() -= 0.08f;
+  right.translation().x() += 0.08f;
+  const auto frameOf = [](const Eigen::Isometry3f& a, const Eigen::Isometry3f& b) {
+    return blocksAt({{a, 0.9f}, {b, 0.9f}});
+  };
+  FrameTracker tracker{TrackingParams{}};
+  const FrameTracking first =
+      tracker.track(frameOf(left, right), {{"block", model_.get()}}, params, 0.0);
+  const std::vector<InstancePose>& found = first.objects.at(0).result.estimate.instances;
+  ASSERT_EQ(found.size(), 2u);
+  const bool left_first = adds(found[0].pose, left) < adds(found[1].pose, left);
+  for (int k = 1; k <= 3; ++k) {
+    const Eigen::Isometry3f a = moved(left, 5.0f * k, 2.0f * k), b = moved(right, -5.0f * k, 0);
+    const FrameTracking t =
+        tracker.track(frameOf(a, b), {{"block", model_.get()}}, params, k * kFramePeriod);
+    const TrackedObject& o = t.objects.at(0);
+    ASSERT_EQ(o.states, (std::vector<TrackState>{TrackState::kTracked, TrackState::kTracked}));
+    const std::vector<InstancePose>& now = o.result.estimate.instances;
+    const double limit = 0.05 * model_->model.diameter;
+    EXPECT_LT(adds(now[left_first ? 0 : 1].pose, a), limit) << "frame " << k;
+    EXPECT_LT(adds(now[left_first ? 1 : 0].pose, b), limit) << "frame " << k;
+  }
+}
+
+TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
+  // The track holds a block the map marks faintly; the map marks another block strongly: the
+  // tracked pose is accepted, but the scheduled detection finds the other block with a higher
+  // confidence, and the track moves there.
+  Eigen::Isometry3f faint = truth_, strong = truth_;
+  faint.translation().x() -= 0.08f;
+  strong.translation().x() += 0.08f;
+  const Frame both = blocksAt({{faint, 0.9f}, {strong, 0.0f}});  // first only the faint one
+  const Frame look_alike = blocksAt({{faint, 0.5f}, {strong, 0.95f}});
+
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  const auto poseAt = [&](const FrameTracking& t) {
+    return t.objects.at(0).result.estimate.instances.at(0);
+  };
+  ASSERT_LT(adds(poseAt(track(tracker, both, 0.0)).pose, faint), 0.05 * model_->model.diameter);
+  const FrameTracking held = track(tracker, look_alike, kFramePeriod);
+  ASSERT_EQ(held.objects[0].states[0], TrackState::kTracked);  // accepted where it was
+  EXPECT_LT(adds(poseAt(held).pose, faint), 0.05 * model_->model.diameter);
+  const FrameTracking checked = track(tracker, look_alike, 2 * kFramePeriod);
+  ASSERT_TRUE(checked.objects[0].detected);
+  EXPECT_EQ(checked.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_LT(adds(poseAt(checked).pose, strong), 0.05 * model_->model.diameter);
+  EXPECT_GT(poseAt(checked).confidence, poseAt(held).confidence);
+}
+
+TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 0.0);
+  const FrameTracking gone = track(tracker, frameAt(truth_, false), kFramePeriod);
+  const TrackedObject& o = gone.objects[0];
+  ASSERT_EQ(o.states, std::vector<TrackState>{TrackState::kLost});
+  EXPECT_TRUE(o.detected);  // detection tried
+  EXPECT_EQ(gone.counts.lost, 1);
+  const InstancePose& pose = o.result.estimate.instances.at(0);
+  EXPECT_FALSE(pose.accepted);
+  EXPECT_EQ(pose.rejection.rfind("lost: ", 0), 0u) << pose.rejection;
+
+  // Detection keeps trying, and the object comes back as the same instance.
+  const FrameTracking back = track(tracker, frameAt(truth_), 2 * kFramePeriod);
+  ASSERT_EQ(back.objects[0].states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(back.objects[0].result.estimate.instances.at(0).accepted);
+  const FrameTracking tracked = track(tracker, frameAt(truth_), 3 * kFramePeriod);
+  EXPECT_EQ(tracked.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
+}
+
+TEST_F(TrackerTest, AGapOrTimeGoingBackEndsTheTracks) {
+  FrameTracker tracker{TrackingParams{}};
+  track(tracker, frameAt(truth_), 10.0);
+  EXPECT_EQ(track(tracker, frameAt(truth_), 10.0 + kFramePeriod).objects[0].states[0],
+            TrackState::kTracked);
+  // Past max_gap (0.5 s): detected anew, not tracked.
+  const FrameTracking late = track(tracker, frameAt(truth_), 11.0);
+  EXPECT_TRUE(late.counts.reset);
+  EXPECT_EQ(late.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_TRUE(late.objects[0].detected);
+  // A bag played in a loop: the stamp goes back.
+  const FrameTracking loop = track(tracker, frameAt(truth_), 1.0);
+  EXPECT_TRUE(loop.counts.reset);
+  EXPECT_EQ(loop.objects[0].states[0], TrackState::kRedetected);
+  EXPECT_FALSE(track(tracker, frameAt(truth_), 1.0 + kFramePeriod).counts.reset);
+}
+
+TEST_F(TrackerTest, TheGapIsTheInputsNotTheTimeTheTrackerTook) {
+  FrameTracker tracker{TrackingParams{}};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const Frame frame = frameAt(truth_);
+  tracker.track(frame, objects, estimator_.params(), 0.0);
+  // Input frames were skipped while the tracker worked: 2 s since the frame it tracked, but the
+  // input's previous frame came a frame period before this one.
+  const FrameTracking skipped =
+      tracker.track(frame, objects, estimator_.params(), 2.0, 2.0 - kFramePeriod);
+  EXPECT_FALSE(skipped.counts.reset);
+  EXPECT_EQ(skipped.objects[0].states[0], TrackState::kTracked);
+  // The input itself paused for a second.
+  const FrameTracking paused = tracker.track(frame, objects, estimator_.params(), 3.0, 2.0);
+  EXPECT_TRUE(paused.counts.reset);
+  EXPECT_EQ(paused.objects[0].states[0], TrackState::kRedetected);
+}
+
+TEST_F(TrackerTest, DetectionRunsOnScheduleWhileTracked) {
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  std::vector<bool> detected;
+  for (int k = 0; k < 5; ++k) {
+    const FrameTracking t = track(tracker, frameAt(truth_), k * kFramePeriod);
+    detected.push_back(t.objects[0].detected);
+    EXPECT_EQ(t.objects[0].result.estimate.instances.size(), 1u);  // one track, index 0
+  }
+  EXPECT_EQ(detected, (std::vector<bool>{true, false, true, false, true}));
+}
+
+TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  Frame frame = frameAt(truth_);
+  frame.probabilities["copy"] = frame.probabilities["block"];  // a second object, the same block
+  std::vector<bool> first, second;
+  for (int k = 0; k < 5; ++k) {
+    const FrameTracking t = tracker.track(frame, {{"block", model_.get()}, {"copy", model_.get()}},
+                                          estimator_.params(), k * kFramePeriod);
+    first.push_back(t.objects.at(0).detected);
+    second.push_back(t.objects.at(1).detected);
+  }
+  // Both are due on frame 2: the first object detects there, the second one frame later.
+  EXPECT_EQ(first, (std::vector<bool>{true, false, true, false, true}));
+  EXPECT_EQ(second, (std::vector<bool>{true, false, false, true, false}));
+}
+
+TEST_F(TrackerTest, BadParametersAreNamed) {
+  TrackingParams params;
+  params.max_gap = 0;
+  try {
+    FrameTracker{params};
+    ADD_FAILURE() << "max_gap 0 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("max_gap"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ConstantVelocity, PredictsAConstantMotionAndDampsIt) {
+  const Eigen::Vector3f centre(0.01f, 0.02f, 0.03f);
+  ConstantVelocity motion(centre);
+  const Eigen::Isometry3f a = test::viewingPose(0.6f);
+  const Eigen::Isometry3f b = moved(a, 5, 3);
+  motion.update(a, b, 0.1);
+  // Applying the same motion again from b: the centre moves as far again, the rotation repeats.
+  const Eigen::Isometry3f c = motion.predict(b, 0.1, 1.0f);
+  EXPECT_NEAR(((c * centre) - (b * centre) - ((b * centre) - (a * centre))).norm(), 0, 1e-6);
+  const Eigen::Matrix3f turn = b.linear() * a.linear().transpose();
+  EXPECT_TRUE((c.linear()).isApprox(turn * b.linear(), 1e-5f));
+  EXPECT_TRUE(motion.predict(b, 0.1, 0.0f).isApprox(b));
+  const Eigen::Isometry3f half = motion.predict(b, 0.1, 0.5f);
+  EXPECT_NEAR(((half * centre) - (b * centre)).norm(), ((b * centre) - (a * centre)).norm() / 2,
+              1e-6);
+  motion.stop();
+  EXPECT_TRUE(motion.predict(b, 0.1, 1.0f).isApprox(b));
+}
+
+TEST(PredictedBox, HoldsTheObjectsImageAndStaysInTheImage) {
+  const CameraIntrinsics camera = test::testCamera();
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);
+  cv::Mat labels;
+  test::renderDepth({{asymmetricMesh(), pose}}, camera, &labels);
+  ObjectModel model;
+  model.points = asymmetricMesh().vertices;
+  const PoseProximity extent(model);
+  const cv::Rect box = predictedBox(extent, pose, camera, 0.0f);
+  EXPECT_EQ(cv::countNonZero(labels(box) == 1), cv::countNonZero(labels == 1));
+  EXPECT_LT(box.area(), camera.width * camera.height / 2);
+  const cv::Rect wide = predictedBox(extent, pose, camera, 0.5f);
+  EXPECT_GT(wide.area(), box.area());
+  Eigen::Isometry3f behind = pose;
+  behind.translation().z() = 0;
+  EXPECT_EQ(predictedBox(extent, behind, camera, 0.5f),
+            cv::Rect(0, 0, camera.width, camera.height));
+}
+
+}  // namespace
+}  // namespace stocs
