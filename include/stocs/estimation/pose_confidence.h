@@ -46,15 +46,15 @@ struct ConfidenceEvidence {
 /// The logistic model: confidence = sigmoid(intercept + sum of weight * feature).
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -6.7429f;
-  float surface_confirmed = 2.8024f;
-  float free_space = -4.0402f;
-  float map_support = 4.0654f;
-  float matched = 2.2944f;
-  float consensus = 1.4401f;
-  float silhouette = 1.6011f;
+  float intercept = -6.3244f;
+  float surface_confirmed = 2.5135f;
+  float free_space = -3.9434f;
+  float map_support = 4.5279f;
+  float matched = 2.5597f;
+  float consensus = 0.9997f;
+  float silhouette = 1.1715f;
   /// Poses below this confidence are rejected: not published, not written to results.
-  float min_confidence = 0.4f;
+  float min_confidence = 0.45f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ConfidenceParams>& schema();
