@@ -53,6 +53,10 @@ std::string likelyUnitAdvice(double file_diameter) {
 
 }  // namespace
 
+bool isMeshOnlyFormat(const std::string& path) {
+  return detail::isAssimpFormat(lowerExtension(path));
+}
+
 MeshData loadMesh(const std::string& path, float unit_scale) {
   namespace fs = std::filesystem;
   if (!(unit_scale > 0) || !std::isfinite(unit_scale)) {

@@ -19,4 +19,9 @@ namespace stocs {
 /// scale; the message names the unit the file is likely in).
 MeshData loadMesh(const std::string& path, float unit_scale);
 
+/// Whether `path`'s extension names a format of meshes only, read through assimp (OBJ, STL, DAE,
+/// glTF, GLB): files rviz draws as a mesh marker in the frame loadMesh reads them in. PLY (which
+/// may hold points only) and PCD are not.
+bool isMeshOnlyFormat(const std::string& path);
+
 }  // namespace stocs
