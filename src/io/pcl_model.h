@@ -1,7 +1,7 @@
 #pragma once
 // PLY and PCD models through PCL, after the header checks of model_file_check.h. PLY stays on PCL
-// rather than assimp: PCL keeps the file's vertices in their order (assimp's PLY reader reorders
-// and merges them), so prepared models, cache entries and results stay as they were.
+// rather than assimp: assimp 5.2 refuses a PLY of points only ("Mesh contains no faces"), and with
+// PCL the vertices, prepared models, cache entries and results stay as they were.
 
 #include <string>
 
