@@ -61,3 +61,7 @@ if(STOCS_CORE_TESTS)
     target_link_libraries(test_baselines stocs_methods_open3d OpenMP::OpenMP_CXX)
   endif()
 endif()
+# test_mesh_formats writes its format files with assimp's exporter.
+if(TARGET test_mesh_formats)
+  target_link_libraries(test_mesh_formats assimp::assimp)
+endif()

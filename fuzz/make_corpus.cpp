@@ -61,6 +61,58 @@ void modelSeeds(const fs::path& corpus) {
   writeSeed(corpus, "fuzz_pcd_model", "binary.pcd", pcd_binary.bytes());
 }
 
+/// glTF JSON of one triangle whose 36 bytes of positions are buffer 0 at `uri` (none: GLB's own).
+std::string gltfJson(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], )"
+         R"("nodes": [{"mesh": 0, "translation": [0, 0, 10]}], "meshes": [{"primitives": [)"
+         R"({"attributes": {"POSITION": 0}}]}], "accessors": [{"bufferView": 0, "count": 3, )"
+         R"("type": "VEC3", "componentType": 5126, "min": [0, 0, 0], "max": [50, 50, 0]}], )"
+         R"("bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36)" +
+         (uri.empty() ? std::string() : R"(, "uri": ")" + uri + "\"") + "}]}";
+}
+
+/// Seeds of fuzz_mesh_model: the first byte picks the format (0 OBJ, 1 STL, 2 DAE, 3 glTF, 4 GLB).
+void meshSeeds(const fs::path& corpus) {
+  const std::string t = "fuzz_mesh_model";
+  writeSeed(corpus, t, "quad.obj",
+            std::string(1, '\0') +
+                "mtllib gone.mtl\no quad\nv 0 0 0\nv 50 0 0\nv 50 50 0\n"
+                "v 0 50 10\nusemtl red\nf 1 2 3 4\n");
+  writeSeed(corpus, t, "ascii.stl",
+            "\1solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 50 0 0\n"
+            "vertex 0 50 0\nendloop\nendfacet\nendsolid t\n");
+  const float triangle[9] = {0, 0, 0, 50, 0, 0, 0, 50, 0};
+  ByteWriter stl;
+  stl.append("\1" + std::string(80, ' ')).put(uint32_t{1}).put(0.0f).put(0.0f).put(1.0f);
+  for (const float x : triangle) stl.put(x);
+  writeSeed(corpus, t, "binary.stl", stl.put(uint16_t{0}).bytes());
+  writeSeed(
+      corpus, t, "nodes.dae",
+      "\2<?xml version=\"1.0\"?><COLLADA xmlns=\"http://www.collada.org/2005/11/"
+      "COLLADASchema\" version=\"1.4.1\"><asset><unit meter=\"1\"/><up_axis>Z_UP"
+      "</up_axis></asset><library_geometries><geometry id=\"g\"><mesh><source id=\"p\">"
+      "<float_array id=\"a\" count=\"9\">0 0 0 50 0 0 0 50 0</float_array>"
+      "<technique_common><accessor source=\"#a\" count=\"3\" stride=\"3\"><param name=\"X\" "
+      "type=\"float\"/><param name=\"Y\" type=\"float\"/><param name=\"Z\" type=\"float\"/>"
+      "</accessor></technique_common></source><vertices id=\"v\"><input semantic=\"POSITION\" "
+      "source=\"#p\"/></vertices><triangles count=\"1\"><input semantic=\"VERTEX\" "
+      "source=\"#v\" offset=\"0\"/><p>0 1 2</p></triangles></mesh></geometry>"
+      "</library_geometries><library_visual_scenes><visual_scene id=\"s\"><node id=\"n\">"
+      "<translate>0 0 10</translate><instance_geometry url=\"#g\"/></node></visual_scene>"
+      "</library_visual_scenes><scene><instance_visual_scene url=\"#s\"/></scene></COLLADA>");
+  writeSeed(corpus, t, "embedded.gltf",
+            "\3" + gltfJson("data:application/octet-stream;base64,"
+                            "AAAAAAAAAAAAAAAAAABIQgAAAAAAAAAAAAAAAAAASEIAAAAA"));
+  std::string json = gltfJson("");
+  json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned
+  ByteWriter glb;
+  glb.append("\4glTF").put(uint32_t{2}).put(static_cast<uint32_t>(12 + 8 + json.size() + 8 + 36));
+  glb.put(static_cast<uint32_t>(json.size())).append("JSON").append(json);
+  glb.put(uint32_t{36}).append(std::string("BIN\0", 4));
+  for (const float x : triangle) glb.put(x);
+  writeSeed(corpus, t, "triangle.glb", glb.bytes());
+}
+
 void bopSeeds(const fs::path& corpus) {
   writeSeed(corpus, "fuzz_bop_json", "scene_camera.json",
             R"({"0": {"cam_K": [572.4, 0.0, 325.3, 0.0, 573.6, 242.0, 0.0, 0.0, 1.0],)"
@@ -162,6 +214,7 @@ int main(int argc, char** argv) {
   }
   const fs::path corpus = argv[1];
   modelSeeds(corpus);
+  meshSeeds(corpus);
   bopSeeds(corpus);
   cacheSeeds(corpus);
   rosSeeds(corpus);

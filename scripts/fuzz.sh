@@ -26,6 +26,7 @@ else
 fi
 mkdir -p "$OUT/logs" "$OUT/artifacts"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
+export LSAN_OPTIONS="suppressions=$REPO/scripts/lsan_suppressions.txt"  # assimp's own leak
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 failed=()
 printf '%-20s %8s %12s %8s %s\n' target seconds executions corpus result

@@ -16,6 +16,9 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libnanoflann-dev
   libxxhash-dev
+  # Model files in OBJ, STL, DAE, glTF (src/io/assimp_model.cpp); assimp-utils' `assimp export`
+  # makes the glTF of scripts/export_test_meshes.py.
+  libassimp-dev assimp-utils
   gnuplot-nox
   clang libclang-rt-14-dev libomp-14-dev
   # What README's commands use: rosrun, tf_echo, rosbag, rviz (headless under xvfb-run, which

@@ -27,8 +27,9 @@ class Estimator {
   /// Throws InputError naming the first parameter out of range.
   explicit Estimator(PipelineParams params = {}, ModelCache cache = ModelCache());
 
-  /// Object `name` with the model in `model_file` (PLY or PCD; `unit_scale`: model units to
-  /// metres), prepared once and cached. Throws InputError for a bad file or a name in use.
+  /// Object `name` with the model in `model_file` (PLY, PCD, OBJ, STL, DAE, glTF or GLB, as
+  /// loadMesh reads them; `unit_scale`: model units to metres), prepared once and cached. Throws
+  /// InputError for a bad file or a name in use.
   void addObject(const std::string& name, const std::string& model_file, float unit_scale = 0.001f);
   /// Object `name` with a model prepared elsewhere, shared with its other users.
   void addObject(const std::string& name, std::shared_ptr<const PreparedModel> model);

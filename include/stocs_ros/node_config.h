@@ -18,7 +18,7 @@ namespace stocs_ros {
 struct ObjectConfig {
   std::string name;             ///< topic and TF name component
   int id = 0;                   ///< numeric id in the outputs (default: position in the list + 1)
-  std::filesystem::path model;  ///< model file (PLY), resolved
+  std::filesystem::path model;  ///< model file (PLY, PCD, OBJ, STL, DAE, glTF, GLB), resolved
   float unit_scale = 0.001f;    ///< model units to metres
   std::string mesh_url;         ///< rviz mesh_resource; empty: markers show the model samples
   float mesh_scale = 0.001f;    ///< mesh units to metres (default: unit_scale)

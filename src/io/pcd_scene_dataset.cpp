@@ -1,4 +1,4 @@
-// With mesh_io.cpp, the only core file that includes PCL headers: PCD reading and PLY writing.
+// With pcl_model.cpp, the only core file that includes PCL headers: PCD reading and PLY writing.
 #include "stocs/io/pcd_scene_dataset.h"
 
 #include <fmt/format.h>

@@ -4,6 +4,8 @@
 #include <unistd.h>
 #include <xxhash.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -36,6 +38,26 @@ std::string readFileBytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("model {}: cannot open for reading", path));
   return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+template <class T>
+void appendBytes(std::string& bytes, const std::vector<T>& values) {
+  bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
+
+/// What an entry's key hashes of the model: the file's bytes and, for a glTF, whose buffers are
+/// usually files of their own (a .bin beside it), also the geometry read from it, so that a
+/// changed buffer changes the key. Every other format holds its geometry in the one file.
+std::string modelKeyBytes(const std::string& model_file, float unit_scale) {
+  std::string bytes = readFileBytes(model_file);
+  std::string ext = std::filesystem::path(model_file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".gltf") return bytes;
+  const MeshData mesh = loadMesh(model_file, unit_scale);
+  appendBytes(bytes, mesh.vertices);
+  appendBytes(bytes, mesh.triangles);
+  return bytes;
 }
 
 uint64_t entryKey(const std::string& model_bytes, float unit_scale,
@@ -215,7 +237,8 @@ std::filesystem::path ModelCache::defaultDirectory() {
 
 std::filesystem::path ModelCache::entryPath(const std::string& model_file, float unit_scale,
                                             const ModelPreparationParams& params) const {
-  return entryFile(directory_, model_file, entryKey(readFileBytes(model_file), unit_scale, params));
+  return entryFile(directory_, model_file,
+                   entryKey(modelKeyBytes(model_file, unit_scale), unit_scale, params));
 }
 
 PreparedModel ModelCache::load(const std::string& model_file, float unit_scale,
@@ -230,7 +253,7 @@ PreparedModel ModelCache::load(const std::string& model_file, float unit_scale,
   if (!std::filesystem::is_regular_file(model_file, ec)) {
     throw InputError(fmt::format("model {}: no such file", model_file));
   }
-  const uint64_t key = entryKey(readFileBytes(model_file), unit_scale, params);
+  const uint64_t key = entryKey(modelKeyBytes(model_file, unit_scale), unit_scale, params);
   r.entry = entryFile(directory_, model_file, key);
   bool existed = std::filesystem::exists(r.entry, ec);
   if (existed) {

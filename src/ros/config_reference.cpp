@@ -28,7 +28,8 @@ objects:
     id: 6                      # numeric id in ~objects (default: position in this list + 1)
     model: $(dataset)/models/obj_000006.ply
     unit_scale: 0.001          # model units to metres (BOP models are in mm)
-    mesh: ""                   # rviz mesh (package://, path); empty: markers show model samples
+    mesh: ""                   # rviz mesh (package://, path); empty: an OBJ, STL, DAE, glTF or
+                               # GLB model itself, else the model samples
     # mesh_scale: 0.001        # mesh units to metres (default: unit_scale)
     symmetries:                # as in BOP models_info.json, in model units
       discrete: []             # row-major 4x4 transforms, identity not listed
@@ -51,9 +52,9 @@ The estimation keys are also options of `stocs estimate`, `stocs bench` and `sto
 |---|---|---|
 | `name` | required | topic and TF name: a letter, then letters, digits and underscores |
 | `id` | position in the list + 1 | numeric id in `~objects` (the BOP `obj_id` for BOP models) |
-| `model` | required | model file (PLY, PCD): absolute, relative to the configuration file, `package://PKG/PATH`, with `$(env VAR)` and `$(dataset)` (the node's `~dataset` parameter) |
+| `model` | required | model file (PLY, PCD, OBJ, STL, DAE, glTF, GLB; its frame is the file's own, [models](ros.md#models)): absolute, relative to the configuration file, `package://PKG/PATH`, with `$(env VAR)` and `$(dataset)` (the node's `~dataset` parameter) |
 | `unit_scale` | `0.001` | model units to metres (BOP models are in mm) |
-| `mesh` | `""` | rviz mesh resource for the markers (empty: model points) |
+| `mesh` | `""` | rviz mesh resource for the markers (empty: the model file itself for an OBJ, STL, DAE, glTF or GLB model, drawn in the frame the estimator reads it in; model points for PLY and PCD) |
 | `mesh_scale` | `unit_scale` | mesh units to metres |
 | `symmetries` | none | `discrete` (4x4 row-major) and `continuous` (`axis`, `offset`), as in BOP `models_info.json`, model units; keeps reported poses continuous across frames |
 

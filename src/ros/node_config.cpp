@@ -8,6 +8,7 @@
 #include <regex>
 #include <set>
 
+#include "stocs/io/mesh_io.h"
 #include "stocs/util/error.h"
 #include "stocs_ros/resource_path.h"
 
@@ -174,7 +175,11 @@ ObjectConfig readObject(MapReader reader, int position, const PathContext& paths
   try {
     o.model = resolveResourcePath(model, paths);
     key = "mesh";
-    if (!mesh.empty()) o.mesh_url = resourceUrl(mesh, paths);
+    if (!mesh.empty()) {
+      o.mesh_url = resourceUrl(mesh, paths);
+    } else if (stocs::isMeshOnlyFormat(o.model.string())) {
+      o.mesh_url = "file://" + o.model.lexically_normal().string();  // rviz shows the same file
+    }
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}{}: {}", where, key, e.what()));
   }

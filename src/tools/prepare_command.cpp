@@ -43,7 +43,8 @@ Command registerPrepare(CLI::App& app) {
   auto o = std::make_shared<PrepareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "prepare", "Preprocess object models (samples, normals, PPF map) into the cache");
-  cmd->add_option("models", o->models, "Model files (PLY or PCD)")->required();
+  cmd->add_option("models", o->models, "Model files (PLY, PCD, OBJ, STL, DAE, glTF, GLB)")
+      ->required();
   addModelOptions(*cmd, o->model);
   addPipelineOptions(*cmd, o->params);
   return {cmd, [o] { return runPrepare(*o); }};

@@ -48,6 +48,22 @@ TEST(CliBadInput, AMillimetreModelDeclaredAsMetresIsRefused) {
       << out;
 }
 
+TEST(CliBadInput, MeshFormatModelsArePreparedOrRefusedNamingTheFile) {
+  const auto dir = test::scratchDir("cli_mesh_formats");
+  std::ofstream(dir / "quad.obj") << "mtllib gone.mtl\nv 0 0 0\nv 100 0 0\nv 100 50 0\nv 0 50 20\n"
+                                     "f 1 2 3 4\n";
+  std::string out;
+  EXPECT_EQ(stocs("prepare --no-cache " + (dir / "quad.obj").string(), out), 0) << out;
+  EXPECT_EQ(stocs("prepare --no-cache --model-scale 1 " + (dir / "quad.obj").string(), out), 2);
+  EXPECT_NE(out.find("if the file is in mm use unit scale 0.001"), std::string::npos) << out;
+  std::ofstream(dir / "bad.stl") << "solid x\nfacet normal a b c\n";
+  EXPECT_EQ(stocs("prepare --no-cache " + (dir / "bad.stl").string(), out), 2);
+  EXPECT_NE(
+      out.find("stocs: error: model " + (dir / "bad.stl").string() + ": not a readable STL file"),
+      std::string::npos)
+      << out;
+}
+
 TEST(CliBadInput, ACorruptOrUnwritableCacheIsRebuiltOrSkipped) {
   const auto dir = test::scratchDir("cli_bad_cache");
   writePly(dir / "box.ply", boxMesh({100, 60, 40}));

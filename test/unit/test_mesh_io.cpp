@@ -85,8 +85,8 @@ TEST(MeshIo, BadFilesGiveErrorsNamingTheFileAndProblem) {
   EXPECT_NE(errorOf(dir / "empty.ply").find("empty"), std::string::npos);
   writeText(dir / "garbage.ply", "this is not a ply file\n");
   EXPECT_NE(errorOf(dir / "garbage.ply").find("garbage.ply"), std::string::npos);
-  writeText(dir / "model.obj", "v 0 0 0\n");
-  EXPECT_NE(errorOf(dir / "model.obj").find("unsupported extension"), std::string::npos);
+  writeText(dir / "model.xyz", "0 0 0\n");
+  EXPECT_NE(errorOf(dir / "model.xyz").find("unsupported extension"), std::string::npos);
   writeText(dir / "no_vertices.ply",
             "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
             "property float z\nend_header\n");

@@ -69,6 +69,31 @@ TEST_F(ModelCacheTest, ParametersAndModelBytesSelectTheEntry) {
   EXPECT_EQ(base.parent_path(), dir_ / "cache");
 }
 
+// A glTF's geometry is usually in a buffer file of its own: changing it must change the entry.
+TEST_F(ModelCacheTest, AGltfBufferFileSelectsTheEntry) {
+  const std::filesystem::path gltf = dir_ / "triangle.gltf";
+  std::ofstream(gltf) << R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],)"
+                      << R"( "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes":)"
+                      << R"( {"POSITION": 0}}]}], "accessors": [{"bufferView": 0, "count": 3,)"
+                      << R"( "type": "VEC3", "componentType": 5126}], "bufferViews": [{"buffer":)"
+                      << R"( 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri":)"
+                      << R"( "triangle.bin"}]})";
+  auto writeTriangle = [&](float size) {
+    const float corners[9] = {0, 0, 0, size, 0, 0, 0, size, 0};
+    std::ofstream(dir_ / "triangle.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(corners), sizeof corners);
+  };
+  const ModelCache cache(dir_ / "cache");
+  writeTriangle(0.05f);
+  const auto small = cache.entryPath(gltf.string(), 1.0f, params_);
+  writeTriangle(0.08f);
+  EXPECT_NE(cache.entryPath(gltf.string(), 1.0f, params_), small);
+  CacheReport report;
+  EXPECT_NEAR(cache.load(gltf.string(), 1.0f, params_, &report).model.diameter,
+              0.08f * std::sqrt(2.0f), 1e-4f);
+  EXPECT_EQ(report.outcome, CacheOutcome::kBuilt);
+}
+
 TEST_F(ModelCacheTest, CorruptPayloadIsDetectedAndRebuilt) {
   const ModelCache cache(dir_ / "cache");
   CacheReport report;

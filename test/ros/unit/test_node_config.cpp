@@ -52,6 +52,20 @@ TEST(NodeConfig, DefaultFileHoldsTheCoreDefaults) {
   }
 }
 
+// rviz draws an OBJ, STL, DAE, glTF or GLB model from the model file itself, in the frame the
+// estimator reads it in; PLY and PCD models are drawn as points unless `mesh` is set.
+TEST(NodeConfig, AMeshFormatModelIsDrawnFromItsOwnFile) {
+  const std::filesystem::path file = writeConfig(
+      "objects:\n  - {name: arm, model: urdf/../meshes/arm.DAE, unit_scale: 1}\n"
+      "  - {name: cup, model: cup.stl, mesh: cup_visual.dae}\n  - {name: box, model: box.ply}\n");
+  const NodeConfig c = loadNodeConfig(file);
+  const std::filesystem::path dir = file.parent_path();
+  EXPECT_EQ(c.objects[0].mesh_url, "file://" + (dir / "meshes/arm.DAE").string());
+  EXPECT_FLOAT_EQ(c.objects[0].mesh_scale, 1.0f);
+  EXPECT_EQ(c.objects[1].mesh_url, "file://" + (dir / "cup_visual.dae").string());
+  EXPECT_TRUE(c.objects[2].mesh_url.empty());
+}
+
 TEST(NodeConfig, ValuesReachTheirFieldsAndPathsResolve) {
   const std::filesystem::path file = writeConfig(R"(objects:
   - name: box
