@@ -216,9 +216,8 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
             std::string::npos)
       << out;
   // The pose's confidence evidence and confidence, each in [0, 1], for `stocs calibrate`.
-  for (const char* column :
-       {"surface_confirmed", "free_space", "map_support", "matched", "consensus", "silhouette",
-        "confidence"}) {
+  for (const char* column : {"surface_confirmed", "free_space", "map_support", "matched",
+                             "consensus", "silhouette", "confidence"}) {
     EXPECT_GE(number(rows[0], column), 0) << column;
     EXPECT_LE(number(rows[0], column), 1) << column;
   }
