@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "model_file_check.h"
 #include "stocs/util/error.h"
 
 namespace stocs::detail {
@@ -97,6 +98,7 @@ bool isAssimpFormat(const std::string& ext) {
 }
 
 MeshData readAssimpModel(const std::string& path, const std::string& ext) {
+  if (ext == ".glb") checkGlbChunks(path);
   // No logger is created, so assimp's messages go to its silent default one; its errors come
   // back through GetErrorString.
   Assimp::Importer importer;

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -290,6 +292,35 @@ void checkPcdHeader(const std::string& path) {
                                        points, needed, h.body_bytes));
   }
   checkPcdBodyStart(path, kind, h.body_start);
+}
+
+void checkGlbChunks(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const auto word = [&]() {  // little-endian uint32, or none at the end of the file
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) return std::optional<uint32_t>();
+    return std::optional<uint32_t>(b[0] | b[1] << 8 | b[2] << 16 |
+                                   static_cast<uint32_t>(b[3]) << 24);
+  };
+  const auto magic = word(), version = word(), length = word();
+  if (!length || *magic != 0x46546C67u)
+    throw modelError(path, "not a binary glTF (no glTF header)");
+  if (*version != 2)
+    throw modelError(path, fmt::format("binary glTF version {} (only 2 is read)", *version));
+  const uint64_t size = std::filesystem::file_size(path);
+  if (*length != size) {
+    throw modelError(
+        path, fmt::format("binary glTF header gives {} bytes, the file has {}", *length, size));
+  }
+  for (uint64_t offset = 12; offset < size;) {
+    const auto chunk = word();
+    if (!chunk || !word() || offset + 8 + *chunk > size) {
+      throw modelError(
+          path, fmt::format("binary glTF chunk at byte {} runs past the file's end", offset));
+    }
+    in.seekg(static_cast<std::streamoff>(*chunk), std::ios::cur);
+    offset += 8 + *chunk;
+  }
 }
 
 }  // namespace stocs::detail

@@ -1,7 +1,8 @@
 #pragma once
-// Header checks run before PCL parses a model file. PCL's PLY and PCD readers abort on asserts,
-// dereference null or allocate whatever a header claims for some malformed headers (found by
-// fuzz_ply_model and fuzz_pcd_model), so only headers of the shapes they handle reach them.
+// Header checks run before PCL (or assimp, for GLB) parses a model file. PCL's PLY and PCD readers
+// abort on asserts, dereference null or allocate whatever a header claims for some malformed
+// headers (found by fuzz_ply_model and fuzz_pcd_model), so only headers of the shapes they handle
+// reach them.
 
 #include <string>
 
@@ -17,5 +18,10 @@ void checkPlyHeader(const std::string& path);
 /// VIEWPOINT, POINTS, DATA), consistent field lists, WIDTH x HEIGHT == POINTS >= 1, DATA ascii /
 /// binary / binary_compressed and a body long enough for POINTS. Throws InputError otherwise.
 void checkPcdHeader(const std::string& path);
+
+/// Accepts a binary glTF whose header (magic `glTF`, version 2) gives the file's own length and
+/// whose chunks each fit in it. assimp allocates whatever the header and chunk lengths claim
+/// (found by fuzz_mesh_model). Throws InputError otherwise.
+void checkGlbChunks(const std::string& path);
 
 }  // namespace stocs::detail

@@ -206,7 +206,15 @@ TEST(MeshFormats, BadMeshFilesGiveErrorsNamingTheFileAndProblem) {
               "not a readable STL file");
   expectError("truncated.dae", "<?xml version=\"1.0\"?>\n<COLLADA version=\"1.4.1\"><asset>",
               "not a readable DAE file");
-  expectError("short.glb", "glTF", "not a readable GLB file");
+  expectError("short.glb", "glTF", "not a binary glTF (no glTF header)");
+  // Headers whose lengths assimp would allocate (found by fuzz_mesh_model): 1.7 GB claimed.
+  const std::string header("glTF\x02\0\0\0", 8);
+  expectError("long.glb", header + std::string("\xc8\x01\x68\x65", 4) + std::string(20, '\0'),
+              "binary glTF header gives 1701315016 bytes, the file has 32");
+  expectError("long_chunk.glb",
+              header + std::string("\x1c\0\0\0", 4) + std::string("\xff\xff\0\0JSON", 8) +
+                  std::string(8, ' '),
+              "binary glTF chunk at byte 12 runs past the file's end");
   // A glTF accessor claiming a billion vertices in a 12-byte buffer.
   expectError("huge.gltf",
               R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], )"
