@@ -69,12 +69,6 @@ Eigen::Isometry3f IcpRefiner::refine(const ObjectModel& model, const Eigen::Isom
   return run.pose;
 }
 
-Eigen::Vector3f sampleCentre(const ObjectModel& model) {
-  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-  for (const Eigen::Vector3f& q : model.points) centre += q;
-  return centre / static_cast<float>(std::max<size_t>(1, model.size()));
-}
-
 PointToPlaneSystem IcpRefiner::system(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                       int region, const LcpScorer* near) const {
   const SoftSegment& segment = segment_;

@@ -14,12 +14,6 @@ constexpr float kExactShare = 0.2f;  // of the sampling radius: below, an exact 
 constexpr float kNearShare = 0.5f;   // of the sampling radius: below, a near symmetry
 const float kNormalCos = std::cos(30.0f * static_cast<float>(M_PI) / 180.0f);
 
-Eigen::Vector3f centreOf(const ObjectModel& model) {
-  Eigen::Vector3f sum = Eigen::Vector3f::Zero();
-  for (const Eigen::Vector3f& p : model.points) sum += p;
-  return sum / static_cast<float>(model.size());
-}
-
 float meanDistance(const ObjectModel& model, const KnnIndex& index, const Eigen::Vector3f& centre,
                    const Eigen::Matrix3f& turn) {
   std::vector<size_t> nearest;
@@ -42,14 +36,14 @@ float meanDistance(const ObjectModel& model, const KnnIndex& index, const Eigen:
 float turnedSurfaceDistance(const ObjectModel& model, const Eigen::Vector3f& axis, float angle) {
   if (model.size() == 0) return 0;
   const KnnIndex index(model.points);
-  return meanDistance(model, index, centreOf(model),
+  return meanDistance(model, index, sampleCentre(model),
                       Eigen::AngleAxisf(angle, axis.normalized()).toRotationMatrix());
 }
 
 std::vector<NearSymmetry> findNearSymmetries(const ObjectModel& model) {
   std::vector<NearSymmetry> out;
   if (model.size() < 4 || !(model.sampling_radius > 0)) return out;
-  const Eigen::Vector3f centre = centreOf(model);
+  const Eigen::Vector3f centre = sampleCentre(model);
   Eigen::Matrix3f scatter = Eigen::Matrix3f::Zero();
   for (const Eigen::Vector3f& p : model.points) scatter += (p - centre) * (p - centre).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> principal(scatter);

@@ -61,6 +61,12 @@ void ModelSamplingParams::validate() const {
   schema().validate(*this);
 }
 
+Eigen::Vector3f sampleCentre(const ObjectModel& model) {
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+  for (const Eigen::Vector3f& q : model.points) centre += q;
+  return centre / static_cast<float>(std::max<size_t>(1, model.size()));
+}
+
 ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params) {
   params.validate();
   if (mesh.vertices.empty()) throw InputError("model has no vertices");

@@ -42,9 +42,6 @@ struct IcpRun {
   explicit IcpRun(const Eigen::Isometry3f& start) : pose(start), before_last(start) {}
 };
 
-/// Mean of the model's samples: the point about which the refinement's steps turn.
-Eigen::Vector3f sampleCentre(const ObjectModel& model);
-
 /// The weighted point-to-plane normal equations of a pose: one row per camera-facing model point
 /// with a correspondence, Jacobian [(p - c) x n, n] of the residual n.(p - s) with respect to a
 /// small rotation w about `centre` (the posed model's centre) followed by a translation v, each

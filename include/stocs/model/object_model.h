@@ -35,6 +35,10 @@ struct ObjectModel {
   size_t size() const { return points.size(); }
 };
 
+/// Mean of the model's samples: the point about which the refinement's steps turn, and the near
+/// symmetries' axes pass.
+Eigen::Vector3f sampleCentre(const ObjectModel& model);
+
 /// At most this many samples, so that sample indices fit in 16 bits in the PPF map.
 constexpr size_t kMaxModelSamples = 65535;
 
