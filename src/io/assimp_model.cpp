@@ -30,10 +30,6 @@ aiMatrix4x4 rootWithoutRotation(const aiNode& root) {
   return aiMatrix4x4(scaling, aiQuaternion(), position);
 }
 
-InputError modelError(const std::string& path, const std::string& why) {
-  return InputError(fmt::format("model {}: {}", path, why));
-}
-
 /// Appends `mesh`'s vertices placed by `transform`, and its triangles.
 void appendMesh(const std::string& path, const aiMesh& mesh, const aiMatrix4x4& transform,
                 MeshData& out) {

@@ -17,6 +17,11 @@
 #include "stocs/util/error.h"
 
 namespace stocs::detail {
+
+InputError modelError(const std::string& path, const std::string& why) {
+  return InputError(fmt::format("model {}: {}", path, why));
+}
+
 namespace {
 
 constexpr size_t kMaxHeaderLines = 1000;
@@ -97,11 +102,6 @@ struct PlyElement {
   uint64_t count = 0;
   std::vector<std::vector<std::string>> properties;  // the words after `property`
 };
-
-/// The error for model file `path` failing a check.
-InputError modelError(const std::string& path, const std::string& why) {
-  return InputError(fmt::format("model {}: {}", path, why));
-}
 
 /// The values of a PCD header's keywords (the words after each), every keyword a known one given
 /// once, and those PCL needs present.

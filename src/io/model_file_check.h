@@ -6,7 +6,12 @@
 
 #include <string>
 
+#include "stocs/util/error.h"
+
 namespace stocs::detail {
+
+/// The error for model file `path`: "model <path>: <why>".
+InputError modelError(const std::string& path, const std::string& why);
 
 /// Accepts `ply`, a `format` of ascii / binary_little_endian / binary_big_endian 1.0, comment and
 /// obj_info lines, an `element vertex` (count >= 1) of scalar properties and an optional
