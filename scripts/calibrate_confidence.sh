@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The reproducible calibration of the pose confidence (docs/confidence.md): labelled poses from
-# generated scenes (`stocs synth`, every simulator preset, seeds 101-116: never the seeds 1-10 that
+# generated scenes (`stocs synth`, every simulator preset, seeds 101-140: never the seeds 1-10 that
 # the tests, the demo and the benchmarks report on) and from the real frames with simulated maps
 # (rutgers-packed scenes 1-14 and ycbv-0000; lmo-cat and rutgers-packed scene 0, the real-map
 # frames, are the reported test and stay out), each estimated with `--min-confidence 0
@@ -44,7 +44,7 @@ label() {
 if $held_out; then
   seeds=$(seq 1 10)
 else
-  seeds=$(seq 101 116)
+  seeds=$(seq 101 140)
 fi
 for preset in clean mild noisy very-noisy; do
   for seed in $seeds; do

@@ -7,7 +7,6 @@
 #include <optional>
 
 #include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/silhouette_support.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -44,7 +43,6 @@ void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpace
   if (c.confirmed > 0) {
     e.map_support = static_cast<float>(c.support / c.confirmed);
   }
-  if (surface) e.silhouette = silhouetteShare(model, pose.pose, surface->camera(), probability);
   judgePose(pose, params);
 }
 

@@ -18,23 +18,49 @@ std::string spoken(const char* name) {
   return s;
 }
 
+/// Log-odds of a share, softened so that 0 and 1 stay finite: a share within a few percent of
+/// either end counts about as much as the end itself.
+double logOdds(double share) {
+  constexpr double kSoftening = 0.05;
+  const double x = std::clamp(share, 0.0, 1.0);
+  return std::log((x + kSoftening) / (1 - x + kSoftening));
+}
+
+/// Which features enter the model as log-odds (the shares measured against the data).
+constexpr std::array<bool, ConfidenceEvidence::kCount> kLogOdds = {true, true, true, true, false};
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> termsOf(
+    const Eigen::Matrix<double, ConfidenceEvidence::kCount, 1>& f) {
+  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> t;
+  for (int i = 0; i < ConfidenceEvidence::kCount; ++i) t[i] = kLogOdds[i] ? logOdds(f[i]) : f[i];
+  return t;
+}
+
 }  // namespace
 
 const std::array<const char*, ConfidenceEvidence::kCount>& ConfidenceEvidence::names() {
-  static const std::array<const char*, kCount> names = {
-      "surface_confirmed", "free_space", "map_support", "matched", "consensus", "silhouette"};
+  static const std::array<const char*, kCount> names = {"surface_confirmed", "free_space",
+                                                        "map_support", "matched", "consensus"};
   return names;
 }
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::features() const {
   Eigen::Matrix<double, kCount, 1> f;
-  f << surface_confirmed, free_space, map_support, matched, consensus, silhouette;
+  f << surface_confirmed, free_space, map_support, matched, consensus;
   return f;
 }
 
 ConfidenceEvidence ConfidenceEvidence::fromFeatures(const Eigen::Matrix<double, kCount, 1>& f) {
   const Eigen::Matrix<float, kCount, 1> v = f.cast<float>();
-  return {v[0], v[1], v[2], v[3], v[4], v[5]};
+  return {v[0], v[1], v[2], v[3], v[4]};
+}
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::terms() const {
+  return termsOf(features());
+}
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::limitTerms(bool best) {
+  return termsOf(Eigen::Matrix<double, kCount, 1>::Constant(best ? 1.0 : 0.0));
 }
 
 const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
@@ -42,7 +68,8 @@ const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
   static const ParamSet<ConfidenceParams> schema =
       ParamSet<ConfidenceParams>()
           .add(&ConfidenceParams::intercept, "intercept", "", weight,
-               "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . evidence)")
+               "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . terms), "
+               "terms: log-odds of the four shares, consensus as it is")
           .add(&ConfidenceParams::surface_confirmed, "surface_confirmed", "", weight,
                "weight: share of the visible model surface confirmed by measured depth")
           .add(&ConfidenceParams::free_space, "free_space", "", weight,
@@ -53,8 +80,6 @@ const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
                "weight: share of the camera-facing model points the segment matches (LCP)")
           .add(&ConfidenceParams::consensus, "consensus", "", weight,
                "weight: share of the 8 best bases that agree with the pose")
-          .add(&ConfidenceParams::silhouette, "silhouette", "", weight,
-               "weight: share of the map's mass around the pose inside its silhouette")
           .add(&ConfidenceParams::min_confidence, "min_confidence", "", ParamRange::closed(0, 1),
                "poses below this confidence are rejected (not published or written)")
           .flag("--min-confidence");
@@ -67,12 +92,12 @@ void ConfidenceParams::validate() const {
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceParams::weights() const {
   Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
-  w << surface_confirmed, free_space, map_support, matched, consensus, silhouette;
+  w << surface_confirmed, free_space, map_support, matched, consensus;
   return w;
 }
 
 float ConfidenceParams::confidence(const ConfidenceEvidence& evidence) const {
-  const double z = intercept + weights().dot(evidence.features());
+  const double z = intercept + weights().dot(evidence.terms());
   return static_cast<float>(1.0 / (1.0 + std::exp(-z)));
 }
 
@@ -81,12 +106,16 @@ void judgePose(InstancePose& pose, const ConfidenceParams& params) {
   pose.accepted = pose.confidence >= params.min_confidence;
   pose.rejection.clear();
   if (pose.accepted) return;
-  // Every feature lies in [0, 1]: its shortfall is what it costs against its best value.
+  // A feature's shortfall is what it costs against its best value (1 for a positive weight, 0
+  // for a negative one).
   const auto f = pose.evidence.features();
+  const auto t = pose.evidence.terms();
   const auto w = params.weights();
+  const auto best = ConfidenceEvidence::limitTerms(true),
+             worst = ConfidenceEvidence::limitTerms(false);
   std::array<int, ConfidenceEvidence::kCount> order;
   std::iota(order.begin(), order.end(), 0);
-  const auto shortfall = [&](int i) { return w[i] > 0 ? w[i] * (1 - f[i]) : -w[i] * f[i]; };
+  const auto shortfall = [&](int i) { return w[i] * ((w[i] > 0 ? best[i] : worst[i]) - t[i]); };
   std::sort(order.begin(), order.end(), [&](int a, int b) { return shortfall(a) > shortfall(b); });
   const auto& names = ConfidenceEvidence::names();
   pose.rejection =

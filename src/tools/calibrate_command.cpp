@@ -131,7 +131,7 @@ int runCalibrate(const CalibrateOptions& o) {
   Eigen::MatrixXd x(static_cast<Eigen::Index>(s.evidence.size()), ConfidenceEvidence::kCount);
   Eigen::VectorXd y(x.rows());
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    x.row(i) = s.evidence[static_cast<size_t>(i)].features().transpose();
+    x.row(i) = s.evidence[static_cast<size_t>(i)].terms().transpose();
     y[i] = s.correct[static_cast<size_t>(i)];
   }
   const LogisticModel model = fitLogistic(x, y, o.l2);

@@ -24,14 +24,21 @@ ConfidenceParams model() {
   return p;
 }
 
-TEST(PoseConfidence, IsTheLogisticOfTheWeightedEvidence) {
+/// The model's term for a share: its log-odds, softened by 0.05 at both ends.
+double logOdds(double share) {
+  return std::log((share + 0.05) / (1 - share + 0.05));
+}
+
+TEST(PoseConfidence, IsTheLogisticOfTheWeightedTerms) {
   ConfidenceEvidence e;
   e.surface_confirmed = 0.9f;
   e.free_space = 0.05f;
   e.map_support = 0.8f;
   e.matched = 0.6f;
   e.consensus = 1;
-  const double z = -4 + 6 * 0.9 - 8 * 0.05 + 2 * 0.8 + 1 * 0.6 + 1;
+  // The four shares enter as log-odds, consensus as it is.
+  const double z =
+      -4 + 6 * logOdds(0.9) - 8 * logOdds(0.05) + 2 * logOdds(0.8) + 1 * logOdds(0.6) + 1;
   EXPECT_NEAR(model().confidence(e), 1 / (1 + std::exp(-z)), 1e-6);
   EXPECT_EQ(ConfidenceEvidence::fromFeatures(e.features()).features(), e.features());
 }
@@ -46,7 +53,8 @@ TEST(PoseConfidence, RejectsBelowTheMinimumNamingTheWeakestEvidence) {
   EXPECT_GT(pose.confidence, 0.5f);
   EXPECT_TRUE(pose.rejection.empty());
 
-  // Surface in free space costs 8 * 0.7, the unconfirmed surface 6 * 0.8: both named, free first.
+  // Against their best values, the surface in free space costs 8 * 3.8 in the logit, the
+  // unconfirmed surface 6 * 4.3, the unmatched model 1 * 6.1: the first two named, free first.
   pose.evidence.surface_confirmed = 0.2f;
   pose.evidence.free_space = 0.7f;
   judgePose(pose, model());

@@ -31,37 +31,40 @@ struct ConfidenceEvidence {
   float matched = 0;
   /// Of the best bases (up to kConsensusBases), the share that put the object in the same place.
   float consensus = 0;
-  /// Of the map's mass around the pose's silhouette, the share inside it (silhouetteShare): a pose
-  /// of a smaller object on a larger region explains only part of it.
-  float silhouette = 0;
 
   static constexpr int kConsensusBases = 8;
-  static constexpr int kCount = 6;
+  static constexpr int kCount = 5;
   /// Feature names, in the order of features() (CSV columns, calibration output).
   static const std::array<const char*, kCount>& names();
   Eigen::Matrix<double, kCount, 1> features() const;
   static ConfidenceEvidence fromFeatures(const Eigen::Matrix<double, kCount, 1>& f);
+  /// The logistic model's inputs, in the same order: the log-odds of the four shares that
+  /// measure the pose against the data (0.98 of the surface confirmed says much more than 0.90,
+  /// which a linear term cannot express), and consensus as it is.
+  Eigen::Matrix<double, kCount, 1> terms() const;
+  /// terms() of the features' best values (weight > 0: 1) or worst (weight <= 0: 0).
+  static Eigen::Matrix<double, kCount, 1> limitTerms(bool best);
 };
 
-/// The logistic model: confidence = sigmoid(intercept + sum of weight * feature).
+/// The logistic model: confidence = sigmoid(intercept + sum of weight * term), terms from
+/// ConfidenceEvidence::terms().
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -6.3244f;
-  float surface_confirmed = 2.5135f;
-  float free_space = -3.9434f;
-  float map_support = 4.5279f;
-  float matched = 2.5597f;
-  float consensus = 0.9997f;
-  float silhouette = 1.1715f;
+  float intercept = -4.8921f;
+  float surface_confirmed = 0.6613f;
+  float free_space = -1.4422f;
+  float map_support = 1.4251f;
+  float matched = 0.4724f;
+  float consensus = 1.5534f;
   /// Poses below this confidence are rejected: not published, not written to results.
-  float min_confidence = 0.45f;
+  float min_confidence = 0.35f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ConfidenceParams>& schema();
   /// Throws InputError naming the first value out of range.
   void validate() const;
 
-  /// The weights in the order of ConfidenceEvidence::features().
+  /// The weights in the order of ConfidenceEvidence::terms().
   Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> weights() const;
   float confidence(const ConfidenceEvidence& evidence) const;
 };
