@@ -57,7 +57,9 @@ function(stocs_add_rostest_node name)
   target_link_libraries(${name} stocs_ros)
   target_compile_definitions(${name} PRIVATE
     STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
-    STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>")
+    STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>"
+    SEGMENTATION_NODE_PATH="$<TARGET_FILE:segmentation_node>"
+    SEGMENTER_MODEL="${PROJECT_SOURCE_DIR}/models/segmenter.onnx")
 endfunction()
 stocs_add_rostest_node(test_node_outputs ${PROJECT_SOURCE_DIR}/test/ros/test_node_outputs.cpp)
 stocs_add_rostest_node(test_bad_inputs ${PROJECT_SOURCE_DIR}/test/ros/test_bad_inputs.cpp)
@@ -86,7 +88,8 @@ add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
-add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)
+add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher
+  segmentation_node)
 add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_sequence_playback scene_publisher stocs_ros_test_data)
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
