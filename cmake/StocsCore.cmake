@@ -5,6 +5,7 @@
 #   estimation <- tracking                              (poses followed from frame to frame)
 #   geometry, io <- sim                                 (scene generator, segmentation simulator)
 #   io, sim <- eval                                     (metrics and dataset evaluation)
+#   util <- segmentation <- sim                         (ONNX segmentation networks, OpenCV DNN)
 # `stocs::core` is all of them, for programs that use every module (the tool, the tests).
 
 # stocs_add_module(NAME [PUBLIC deps...] [PRIVATE deps...]): the library stocs_NAME (alias
@@ -45,14 +46,15 @@ stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
 target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
 stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
 stocs_add_module(tracking PUBLIC stocs_estimation)
+stocs_add_module(segmentation PUBLIC stocs_util opencv_core PRIVATE opencv_dnn opencv_imgproc)
 stocs_add_module(sim PUBLIC stocs_io
-  PRIVATE opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)
+  PRIVATE stocs_segmentation opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)
 stocs_add_module(eval PUBLIC stocs_io stocs_sim)
 
 add_library(stocs_core INTERFACE)
 target_link_libraries(stocs_core INTERFACE
   stocs_util stocs_geometry stocs_io stocs_model stocs_estimation stocs_tracking stocs_sim
-  stocs_eval)
+  stocs_eval stocs_segmentation)
 set_target_properties(stocs_core PROPERTIES EXPORT_NAME core)
 add_library(stocs::core ALIAS stocs_core)
 

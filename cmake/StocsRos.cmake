@@ -3,8 +3,8 @@
 # Included before the core targets because catkin_package() must precede every target.
 # The ROS packages the wrappers build against and export; sorted, as catkin_lint asks.
 set(STOCS_ROS_CATKIN_DEPENDS
-  cv_bridge diagnostic_msgs geometry_msgs nodelet pluginlib roscpp roslib sensor_msgs std_msgs
-  std_srvs tf2 tf2_eigen tf2_ros visualization_msgs)
+  cv_bridge diagnostic_msgs geometry_msgs image_transport nodelet pluginlib roscpp roslib
+  sensor_msgs std_msgs std_srvs tf2 tf2_eigen tf2_ros visualization_msgs)
 set(STOCS_ROS_BUILD_COMPONENTS ${STOCS_ROS_CATKIN_DEPENDS} message_generation)
 set(STOCS_ROS_EXPORTED_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime)
 list(SORT STOCS_ROS_BUILD_COMPONENTS)
@@ -19,7 +19,7 @@ generate_messages(DEPENDENCIES geometry_msgs sensor_msgs std_msgs)
 catkin_package(
   INCLUDE_DIRS include
   LIBRARIES stocs_estimation stocs_eval stocs_geometry stocs_io stocs_methods stocs_model stocs_ros
-            stocs_sim stocs_tracking stocs_util
+            stocs_segmentation stocs_sim stocs_tracking stocs_util
   CATKIN_DEPENDS ${STOCS_ROS_EXPORTED_DEPENDS}
 )
 
@@ -41,6 +41,8 @@ add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)
 target_link_libraries(stocs_node PRIVATE stocs_ros)
 add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_main.cpp)
 target_link_libraries(scene_publisher PRIVATE stocs_ros)
+add_executable(segmentation_node ${PROJECT_SOURCE_DIR}/src/ros/segmentation_node_main.cpp)
+target_link_libraries(segmentation_node PRIVATE stocs_ros)
 add_executable(config_reference ${PROJECT_SOURCE_DIR}/src/ros/config_reference_main.cpp)
 target_link_libraries(config_reference PRIVATE stocs_ros)
 add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder_main.cpp)
@@ -51,7 +53,7 @@ target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros)
 install(TARGETS stocs_ros stocs_ros_nodelet
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
-install(TARGETS config_reference demo_recorder scene_publisher stocs_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(TARGETS config_reference demo_recorder scene_publisher segmentation_node stocs_node RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY include/stocs_ros/ DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
-install(DIRECTORY config launch meshes DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY config launch meshes models DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})

@@ -57,7 +57,9 @@ function(stocs_add_rostest_node name)
   target_link_libraries(${name} stocs_ros)
   target_compile_definitions(${name} PRIVATE
     STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
-    STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>")
+    STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>"
+    SEGMENTATION_NODE_PATH="$<TARGET_FILE:segmentation_node>"
+    SEGMENTER_MODEL="${PROJECT_SOURCE_DIR}/models/segmenter.onnx")
 endfunction()
 stocs_add_rostest_node(test_node_outputs ${PROJECT_SOURCE_DIR}/test/ros/test_node_outputs.cpp)
 stocs_add_rostest_node(test_bad_inputs ${PROJECT_SOURCE_DIR}/test/ros/test_bad_inputs.cpp)
@@ -66,6 +68,7 @@ stocs_add_rostest_node(test_scene_poses ${PROJECT_SOURCE_DIR}/test/ros/test_scen
 stocs_add_rostest_node(test_soak ${PROJECT_SOURCE_DIR}/test/ros/test_soak.cpp)
 stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test_rejected_objects.cpp)
 stocs_add_rostest_node(test_sequence_playback ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_playback.cpp)
+stocs_add_rostest_node(test_segmentation_node ${PROJECT_SOURCE_DIR}/test/ros/test_segmentation_node.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
@@ -74,13 +77,19 @@ add_rostest(test/ros/nodelet_multichannel.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/synth_scene_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_segmentation_node segmentation_node stocs_ros_test_data)
+# The same scene with maps from the package's segmentation network (segmentation_node).
+add_rostest(test/ros/network_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_scene_poses segmentation_node ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
-add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)
+add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher
+  segmentation_node)
 add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_sequence_playback scene_publisher stocs_ros_test_data)
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.

@@ -4,16 +4,21 @@
 # with roslaunch (scene publisher -> stocs_node -> demo recorder), prints per object the pose,
 # score and latency of each frame and the ADD-S error of the last against the ground truth, writes
 # build/demo/overlay.png, and exits 0 only if every object was found (ADD-S < 10% of its diameter).
-#   scripts/demo.sh [--rviz]      (--rviz: also open rviz, on a machine with a display; the scene
-#                                  plays until rviz is closed)
+#   scripts/demo.sh [--rviz] [--network]
+#     --rviz: also open rviz, on a machine with a display; the scene plays until rviz is closed
+#     --network: the maps come from the package's segmentation network (segmentation_node on the
+#                colour image; models/segmenter.onnx, never trained on this scene) instead of prob/
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 rviz=false
-case "${1:-}" in
-  --rviz) rviz=true ;;
-  "") ;;
-  *) echo "usage: $0 [--rviz]" >&2; exit 2 ;;
-esac
+network=false
+for arg in "$@"; do
+  case "$arg" in
+    --rviz) rviz=true ;;
+    --network) network=true ;;
+    *) echo "usage: $0 [--rviz] [--network]" >&2; exit 2 ;;
+  esac
+done
 "$REPO/scripts/install_deps.sh"
 mkdir -p "$REPO/build"
 "$REPO/scripts/build.sh" > "$REPO/build/build.log" 2>&1 || { tail -50 "$REPO/build/build.log"; exit 1; }
@@ -42,7 +47,7 @@ if $rviz; then
   echo "plays until you close rviz, then the report follows"
 fi
 roslaunch -p "$port" stocs_ros demo.launch dataset:="$scene" results:="$demo/results.csv" \
-  rviz:="$rviz" > "$demo/roslaunch.log" 2>&1 || true
+  rviz:="$rviz" network:="$network" > "$demo/roslaunch.log" 2>&1 || true
 grep -E "^(frame |  |latency |results )|ERROR|FATAL" "$demo/roslaunch.log" || true
 if [ ! -s "$demo/results.csv" ]; then
   echo "demo: FAILED, no estimates were recorded (log: $demo/roslaunch.log)" >&2

@@ -16,6 +16,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libnanoflann-dev
   libxxhash-dev
+  # The segmentation network node and `--prob onnx:` (OpenCV DNN) and its image subscription.
+  libopencv-dnn-dev libimage-transport-dev
   # Model files in OBJ, STL, DAE, glTF (src/io/assimp_model.cpp); assimp-utils' `assimp export`
   # makes the glTF of scripts/export_test_meshes.py.
   libassimp-dev assimp-utils

@@ -9,6 +9,7 @@
 
 #include "stocs/util/error.h"
 #include "stocs_ros/scene_publisher.h"
+#include "stocs_ros/segmentation_node.h"
 #include "stocs_ros/stocs_node.h"
 
 namespace stocs_ros {
@@ -32,8 +33,10 @@ class NodeletOf : public nodelet::Nodelet {
 
 class StocsNodelet : public NodeletOf<StocsNode> {};
 class ScenePublisherNodelet : public NodeletOf<ScenePublisher> {};
+class SegmentationNodelet : public NodeletOf<SegmentationNode> {};
 
 }  // namespace stocs_ros
 
 PLUGINLIB_EXPORT_CLASS(stocs_ros::StocsNodelet, nodelet::Nodelet)
 PLUGINLIB_EXPORT_CLASS(stocs_ros::ScenePublisherNodelet, nodelet::Nodelet)
+PLUGINLIB_EXPORT_CLASS(stocs_ros::SegmentationNodelet, nodelet::Nodelet)

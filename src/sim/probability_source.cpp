@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 
+#include "network_probability_source.h"
 #include "stocs/sim/ground_truth_masks.h"
 #include "stocs/sim/segmentation_simulator.h"
 #include "stocs/util/error.h"
@@ -93,13 +94,15 @@ std::string probabilitySourceHelp() {
   return fmt::format(
       "'real' (the dataset's prob/ maps), 'sim:PRESET' (real maps where prob/ has one, the "
       "segmentation simulator on the ground-truth masks elsewhere) or 'simonly:PRESET' (always "
-      "simulated); presets: {}",
+      "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images); presets: {}",
       fmt::join(segmentationPresetNames(), ", "));
 }
 
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed) {
   if (spec == "real") return std::make_unique<RealProbabilitySource>(dataset);
+  if (spec.rfind("onnx:", 0) == 0)
+    return makeNetworkProbabilitySource(spec, spec.substr(5), dataset);
   for (const auto& [prefix, prefer_real] :
        {std::pair{"sim:", true}, std::pair{"simonly:", false}}) {
     const std::string p = prefix;

@@ -1,10 +1,11 @@
 // `stocs simstats`: pixel precision and recall at a threshold of the segmentation simulator's
-// presets and of the dataset's own prob/ maps (real network maps in ../shared/datasets), against
-// the visible ground-truth masks, as one markdown table (the preset calibration in
-// docs/simulator.md).
+// presets, of the dataset's own prob/ maps (real network maps in ../shared/datasets) and of ONNX
+// segmentation networks (--network, on rgb/), against the visible ground-truth masks, as one
+// markdown table (the preset calibration in docs/simulator.md).
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <map>
 #include <opencv2/core.hpp>
 #include <set>
 
@@ -21,14 +22,58 @@ namespace {
 struct SimstatsOptions {
   std::vector<std::string> datasets;
   std::vector<std::string> presets = segmentationPresetNames();
+  std::vector<std::string> networks;
   int seeds = 3;
   float threshold = 0.5f;
+  bool per_object = false;
 };
 
 struct Row {
   PixelCounts counts;
   int maps = 0;
 };
+
+/// Rows in the order they were first counted, by what made the maps (and the object).
+struct Rows {
+  std::vector<std::string> order;
+  std::map<std::string, Row> rows;
+
+  void add(const std::string& key, const PixelCounts& counts) {
+    if (rows.find(key) == rows.end()) order.push_back(key);
+    rows[key].counts += counts;
+    ++rows[key].maps;
+  }
+};
+
+/// One source of maps and the row it counts in.
+struct LabelledSource {
+  std::string label;
+  std::unique_ptr<ProbabilitySource> source;
+};
+
+std::vector<LabelledSource> mapSources(const BopDataset& dataset, const SimstatsOptions& o) {
+  std::vector<LabelledSource> sources;
+  for (int seed = 1; seed <= o.seeds; ++seed) {
+    for (const std::string& preset : o.presets) {
+      sources.push_back(
+          {"simulator, " + preset, makeProbabilitySource("simonly:" + preset, dataset, seed)});
+    }
+  }
+  for (const std::string& model : o.networks) {
+    sources.push_back({"network " + std::filesystem::path(model).filename().string(),
+                       makeProbabilitySource("onnx:" + model, dataset, 0)});
+  }
+  return sources;
+}
+
+/// The visible mask of every instance of `obj` in the frame.
+cv::Mat objectMask(const SegmentationScene& frame, int obj) {
+  cv::Mat target(frame.labels.size(), CV_8UC1, cv::Scalar(0));
+  for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
+    if (frame.obj_ids[i] == obj) target.setTo(255, frame.labels == static_cast<int>(i) + 1);
+  }
+  return target;
+}
 
 void printRow(const std::string& dataset, const std::string& masks, const std::string& source,
               const Row& row) {
@@ -40,15 +85,9 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
   const BopDataset dataset(root);
   const GroundTruthMasks masks(dataset);
   const std::string name = std::filesystem::path(root).filename().string();
-  Row real;
-  std::vector<Row> simulated(o.presets.size());
+  Rows rows;
   std::set<std::string> mask_kinds;
-  std::vector<std::unique_ptr<ProbabilitySource>> sources;
-  for (int seed = 1; seed <= o.seeds; ++seed) {
-    for (const std::string& preset : o.presets) {
-      sources.push_back(makeProbabilitySource("simonly:" + preset, dataset, seed));
-    }
-  }
+  const std::vector<LabelledSource> sources = mapSources(dataset, o);
   for (int scene : dataset.sceneIds()) {
     for (const auto& [im, instances] : dataset.sceneGroundTruth(scene)) {
       const SegmentationScene frame = masks.frame(scene, im);
@@ -56,28 +95,22 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
                                                                         : "rendered");
       const std::set<int> objects(frame.obj_ids.begin(), frame.obj_ids.end());
       for (int obj : objects) {
-        cv::Mat target(frame.labels.size(), CV_8UC1, cv::Scalar(0));
-        for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
-          if (frame.obj_ids[i] == obj) target.setTo(255, frame.labels == static_cast<int>(i) + 1);
-        }
+        const cv::Mat target = objectMask(frame, obj);
+        const std::string suffix = o.per_object ? fmt::format(", obj {}", obj) : "";
         if (std::filesystem::exists(dataset.probabilityPath(scene, im, obj))) {
-          real.counts +=
-              countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold);
-          ++real.maps;
+          rows.add(
+              "dataset's prob/ maps" + suffix,
+              countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold));
         }
-        for (size_t s = 0; s < sources.size(); ++s) {
-          Row& row = simulated[s % o.presets.size()];
-          row.counts += countSegmentPixels(sources[s]->load(scene, im, obj), target, o.threshold);
-          ++row.maps;
+        for (const LabelledSource& s : sources) {
+          rows.add(s.label + suffix,
+                   countSegmentPixels(s.source->load(scene, im, obj), target, o.threshold));
         }
       }
     }
   }
   const std::string kinds = fmt::format("{}", fmt::join(mask_kinds, ", "));
-  if (real.maps > 0) printRow(name, kinds, "dataset's prob/ maps", real);
-  for (size_t p = 0; p < o.presets.size(); ++p) {
-    printRow(name, kinds, "simulator, " + o.presets[p], simulated[p]);
-  }
+  for (const std::string& key : rows.order) printRow(name, kinds, key, rows.rows.at(key));
 }
 
 int runSimstats(const SimstatsOptions& o) {
@@ -98,6 +131,10 @@ Command registerSimstats(CLI::App& app) {
       "prob/ maps against the visible ground-truth masks");
   cmd->add_option("--dataset", o->datasets, "BOP dataset folder (repeatable)")->required();
   cmd->add_option("--presets", o->presets, "Simulator presets, comma-separated")->delimiter(',');
+  cmd->add_option("--network", o->networks,
+                  "ONNX segmentation network (the package's settings, as --prob onnx:) run on "
+                  "rgb/ (repeatable)");
+  cmd->add_flag("--per-object", o->per_object, "One row per object");
   cmd->add_option("--seeds", o->seeds, "Simulated maps per object: seeds 1..N")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threshold", o->threshold, "Probability above which a pixel is in the segment")

@@ -1,5 +1,6 @@
-// The node and the scene publisher started with bad configurations or parameters: each exits with
-// code 1 and a message naming the problem (run under rostest for the ROS master they need).
+// The node, the scene publisher and the segmentation node started with bad configurations or
+// parameters: each exits with code 1 and a message naming the problem (run under rostest for the
+// ROS master they need).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
@@ -133,6 +134,35 @@ TEST(BadConfig, ScenePublisherExitsWithAMessageNamingTheProblem) {
   ros::param::set("/" + name + "/scenes", std::vector<int>{4});
   EXPECT_EQ(run(SCENE_PUBLISHER_PATH, args, output, name), 1) << output;
   EXPECT_NE(output.find("scene 4 does not exist"), std::string::npos) << output;
+}
+
+TEST(BadConfig, SegmentationNodeExitsWithAMessageNamingTheProblem) {
+  struct Case {
+    std::string args;                   ///< scalar private parameters
+    std::vector<std::string> channels;  ///< set on the parameter server (roscpp's _x:= are scalars)
+    std::string expected;
+  };
+  const std::string model = std::string(" _model:=") + SEGMENTER_MODEL;
+  const std::vector<std::string> seven = {"a", "b", "c", "d", "e", "f", "g"};
+  for (const Case& c : std::vector<Case>{
+           {" _model:=/nonexistent/m.onnx", seven,
+            "segmentation model /nonexistent/m.onnx: no such file"},
+           {model + " _classes:=3",
+            {"a", "b", "c"},
+            "output shape [1, 7, 120, 160] is not NCHW with 3 classes"},
+           {model, {}, "must name the object of each output channel"},
+           {"", seven, "/model is not set"},
+           {model + " _classes:=3", seven, "channels names 7 channels, but classes is 3"},
+           {model + " _resize:=crop", seven, "is 'crop', not one of stretch, letterbox"},
+           {model + " _input_width:=wide", seven, "/input_width must be an integer"},
+           {model + " _input_width:=0", seven, "/input_width 0 px is outside [8, 8192]"}}) {
+    const std::string name = nextNodeName();
+    if (!c.channels.empty()) ros::param::set("/" + name + "/channels", c.channels);
+    std::string output;
+    EXPECT_EQ(run(SEGMENTATION_NODE_PATH, c.args, output, name), 1) << c.args << "\n" << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in:\n"
+                                                          << output;
+  }
 }
 
 TEST(BadConfig, ScenePublisherWarnsOnceOfAFrameWithoutProbabilityMaps) {

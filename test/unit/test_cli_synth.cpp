@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "stocs/eval/pose_metrics.h"
@@ -22,7 +23,9 @@ const std::string kTool = STOCS_TOOL_PATH;
 /// (ADD-S against the nearest instance); `log` gets each object's error and the tool's output.
 std::set<int> objectsFound(const std::filesystem::path& data, const std::filesystem::path& work,
                            const std::string& prob, std::string& log) {
-  const std::filesystem::path results = work / ("r" + prob + ".csv");
+  std::string file = "r" + prob + ".csv";
+  std::replace(file.begin(), file.end(), '/', '_');  // onnx:models/...
+  const std::filesystem::path results = work / file;
   std::string out;
   const std::string source = prob.empty() ? "" : " --prob " + prob;
   EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + data.string() + " --out " +
@@ -65,9 +68,9 @@ TEST(CliSynth, EstimateFindsEveryObjectOfAGeneratedScene) {
   const std::map<int, std::vector<BopGtInstance>> gt = BopDataset(data).sceneGroundTruth(0);
   for (const BopGtInstance& g : gt.at(0)) truth.insert(g.obj_id);
   ASSERT_EQ(truth.size(), 3u);
-  // The prob/ maps that synth wrote, then maps simulated on the fly from the masks by a noisier
-  // preset.
-  for (const std::string prob : {"", "simonly:noisy"}) {
+  // The prob/ maps that synth wrote, maps simulated on the fly from the masks by a noisier
+  // preset, and the package's own network on rgb/ (trained on other seeds' scenes).
+  for (const std::string prob : {"", "simonly:noisy", "onnx:models/segmenter.onnx"}) {
     std::string log;
     EXPECT_EQ(objectsFound(data, root, prob, log), truth) << log;
   }
@@ -76,8 +79,8 @@ TEST(CliSynth, EstimateFindsEveryObjectOfAGeneratedScene) {
 TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
   std::string out;
   ASSERT_EQ(test::runCommand(kTool + " estimate --help", out), 0);
-  for (const char* expected :
-       {"'real'", "'sim:PRESET'", "'simonly:PRESET'", "clean, mild, noisy, very-noisy"}) {
+  for (const char* expected : {"'real'", "'sim:PRESET'", "'simonly:PRESET'", "'onnx:MODEL'",
+                               "clean, mild, noisy, very-noisy"}) {
     EXPECT_NE(out.find(expected), std::string::npos) << expected << " missing from:\n" << out;
   }
   const auto root = test::scratchDir("synth_errors");

@@ -31,7 +31,8 @@ std::string probabilitySourceHelp();
 /// "real": the dataset's prob/ maps only; "sim:PRESET": the real map where prob/ has one, else the
 /// segmentation simulator with that preset on the frame's visible ground-truth masks (see
 /// GroundTruthMasks), for any object with a model: one that the frame's ground truth does not hold
-/// gets the simulator's absent-object map; "simonly:PRESET": always simulated. Throws InputError
+/// gets the simulator's absent-object map; "simonly:PRESET": always simulated; "onnx:MODEL": the
+/// segmentation network in the ONNX file MODEL on the frame's rgb/ image. Throws InputError
 /// for an unknown spec or preset, listing the known ones. `seed` makes simulated maps reproducible;
 /// the source keeps the last frame's masks, so it is not for use from several threads at once.
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,

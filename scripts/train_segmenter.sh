@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Trains the package's segmentation network (training/train_segmenter.py) on scenes from
+# `stocs synth` and writes models/segmenter.onnx. CI never runs this: it loads the committed file.
+# Usage: scripts/train_segmenter.sh [OUT.onnx]   (STOCS_TRAIN_THREADS: torch threads, default 1,
+# which trains fastest on a machine others are using;
+# STOCS_TRAIN_MINUTES: training time limit, default 25). Runs under `nice`.
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+
+OUT="${1:-$REPO/models/segmenter.onnx}"
+DATA="$REPO/build/segmenter_training"
+STOCS="$WS/devel/lib/stocs_ros/stocs"
+
+# Training only: Debian's PyTorch and ONNX exporter (not in install_deps.sh, which CI runs).
+TRAINING_PACKAGES=(python3-torch python3-onnx python3-pil python3-numpy)
+missing=()
+for p in "${TRAINING_PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+[ -x "$STOCS" ] || "$REPO/scripts/build.sh"
+
+# Seeds 1001-1004: the scenes of seeds 1-100 (tests, demo, measurements) stay unseen. Four
+# mixes of crowding, distractors and views (closer, farther, lower and higher than the defaults).
+rm -rf "$DATA"
+mkdir -p "$DATA"
+synth() { nice -n 10 "$STOCS" synth --quiet --absent 0 --segmentation clean "$@"; }
+synth --out "$DATA/a" --seed 1001 --scenes 40 --images 3 --objects 4 --distractors 3 \
+  --min-distance 0.45 --max-distance 1.1 --min-elevation 20 --max-elevation 85
+synth --out "$DATA/b" --seed 1002 --scenes 30 --images 3 --objects 6 --distractors 2
+synth --out "$DATA/c" --seed 1003 --scenes 20 --images 3 --objects 2 --distractors 5 \
+  --min-distance 0.5 --max-distance 1.0
+synth --out "$DATA/d" --seed 1004 --scenes 30 --images 3 --objects 6 --distractors 4
+
+mkdir -p "$(dirname "$OUT")"
+OMP_NUM_THREADS="${STOCS_TRAIN_THREADS:-1}" nice -n 10 /usr/bin/python3 \
+  "$REPO/training/train_segmenter.py" --data "$DATA/a" "$DATA/b" "$DATA/c" "$DATA/d" --out "$OUT" \
+  --seed 1 --threads "${STOCS_TRAIN_THREADS:-1}" --minutes "${STOCS_TRAIN_MINUTES:-25}"

@@ -1,0 +1,66 @@
+#include "network_probability_source.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+
+#include "stocs/segmentation/segmentation_network.h"
+#include "stocs/util/error.h"
+
+namespace stocs {
+namespace {
+
+class NetworkProbabilitySource : public ProbabilitySource {
+ public:
+  NetworkProbabilitySource(std::string spec, SegmentationNetwork network, const BopDataset& dataset)
+      : spec_(std::move(spec)), network_(std::move(network)), dataset_(dataset) {}
+
+  std::string spec() const override { return spec_; }
+
+  bool available(int scene_id, int im_id, int obj_id) const override {
+    std::error_code ec;
+    return network_.params().channelOf(std::to_string(obj_id)) >= 0 &&
+           std::filesystem::exists(dataset_.rgbPath(scene_id, im_id), ec);
+  }
+
+  cv::Mat load(int scene_id, int im_id, int obj_id) const override {
+    const int channel = network_.params().channelOf(std::to_string(obj_id));
+    if (channel < 0) {
+      throw InputError(fmt::format("{}: object {} has no output channel", spec_, obj_id));
+    }
+    return maps(scene_id, im_id)[channel];
+  }
+
+ private:
+  /// The frame's maps, kept for the objects that follow (one frame at a time).
+  const std::vector<cv::Mat>& maps(int scene_id, int im_id) const {
+    const auto key = std::make_pair(scene_id, im_id);
+    if (!cached_ || cached_->first != key) {
+      const std::string file = dataset_.rgbPath(scene_id, im_id).string();
+      const cv::Mat bgr = cv::imread(file, cv::IMREAD_COLOR);
+      if (bgr.empty()) throw InputError(fmt::format("{}: cannot read the colour image", file));
+      cached_.emplace(key, network_.segment(bgr));
+    }
+    return cached_->second;
+  }
+
+  std::string spec_;
+  SegmentationNetwork network_;
+  const BopDataset& dataset_;
+  mutable std::optional<std::pair<std::pair<int, int>, std::vector<cv::Mat>>> cached_;
+};
+
+}  // namespace
+
+std::unique_ptr<ProbabilitySource> makeNetworkProbabilitySource(const std::string& spec,
+                                                                const std::string& model,
+                                                                const BopDataset& dataset) {
+  SegmentationNetworkParams params;
+  params.model = model;
+  return std::make_unique<NetworkProbabilitySource>(spec, SegmentationNetwork(params), dataset);
+}
+
+}  // namespace stocs

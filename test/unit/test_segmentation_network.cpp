@@ -1,0 +1,142 @@
+// SegmentationNetwork on tiny ONNX models whose output is known from the input
+// (test/data/segmentation/make_test_models.py): preprocessing, activations, resizing back, and
+// every bad model or image named.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/core.hpp>
+
+#include "stocs/segmentation/segmentation_network.h"
+#include "stocs/util/error.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+using Params = SegmentationNetworkParams;
+
+/// The pass-through model (output = input) read as probabilities, 3 classes, plain 0-1 input.
+Params passThrough(const std::string& model = "test/data/segmentation/pass_through.onnx") {
+  Params p;
+  p.model = model;
+  p.input_width = 16;
+  p.input_height = 12;
+  p.classes = 3;
+  p.output = Params::Output::kProbabilities;
+  return p;
+}
+
+/// A BGR image of one colour.
+cv::Mat uniform(int width, int height, int b, int g, int r) {
+  return cv::Mat(height, width, CV_8UC3, cv::Scalar(b, g, r));
+}
+
+/// Every pixel of each map equals the expected value.
+void expectMaps(const std::vector<cv::Mat>& maps, const std::vector<double>& expected,
+                cv::Size size) {
+  ASSERT_EQ(maps.size(), expected.size());
+  for (size_t c = 0; c < maps.size(); ++c) {
+    ASSERT_EQ(maps[c].type(), CV_32FC1);
+    ASSERT_EQ(maps[c].size(), size);
+    double lo = 0, hi = 0;
+    cv::minMaxLoc(maps[c], &lo, &hi);
+    EXPECT_NEAR(lo, expected[c], 1e-5) << "channel " << c;
+    EXPECT_NEAR(hi, expected[c], 1e-5) << "channel " << c;
+  }
+}
+
+std::string errorOf(const Params& p) {
+  try {
+    SegmentationNetwork net(p);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SegmentationNetwork, ChannelOrderMeanAndScale) {
+  const cv::Mat image = uniform(40, 30, 50, 100, 150);
+  expectMaps(SegmentationNetwork(passThrough()).segment(image),
+             {150 / 255.0, 100 / 255.0, 50 / 255.0}, image.size());
+  Params bgr = passThrough();
+  bgr.channel_order = Params::ChannelOrder::kBgr;
+  bgr.mean_0 = 40;
+  bgr.scale = 0.01f;
+  expectMaps(SegmentationNetwork(bgr).segment(image), {0.1, 1.0, 1.0}, image.size());
+}
+
+TEST(SegmentationNetwork, SoftmaxAndSigmoidOfLogits) {
+  Params p = passThrough();
+  p.output = Params::Output::kLogits;
+  p.scale = 0.01f;  // logits 1.5, 1.0, 0.5
+  const cv::Mat image = uniform(16, 12, 50, 100, 150);
+  const double e0 = std::exp(1.5), e1 = std::exp(1.0), e2 = std::exp(0.5);
+  expectMaps(SegmentationNetwork(p).segment(image),
+             {e0 / (e0 + e1 + e2), e1 / (e0 + e1 + e2), e2 / (e0 + e1 + e2)}, image.size());
+  p.activation = Params::Activation::kSigmoid;
+  expectMaps(SegmentationNetwork(p).segment(image),
+             {1 / (1 + std::exp(-1.5)), 1 / (1 + std::exp(-1.0)), 1 / (1 + std::exp(-0.5))},
+             image.size());
+}
+
+TEST(SegmentationNetwork, LetterboxPaddingStaysOutOfTheMaps) {
+  // 64 x 24 into 16 x 12: the image fills rows 3 to 8, the rest is padding (zero input).
+  Params p = passThrough();
+  p.resize = Params::Resize::kLetterbox;
+  const cv::Mat image = uniform(64, 24, 255, 255, 255);
+  expectMaps(SegmentationNetwork(p).segment(image), {1, 1, 1}, image.size());
+  // Stretched, the left and right halves of the image stay apart.
+  cv::Mat halves = uniform(64, 24, 0, 0, 0);
+  halves.colRange(32, 64).setTo(cv::Scalar(0, 0, 255));
+  const std::vector<cv::Mat> maps = SegmentationNetwork(passThrough()).segment(halves);
+  EXPECT_NEAR(maps[0].at<float>(12, 2), 0.0, 1e-5);
+  EXPECT_NEAR(maps[0].at<float>(12, 61), 1.0, 1e-5);
+}
+
+TEST(SegmentationNetwork, SmallerOutputScaledToTheImage) {
+  Params p = passThrough("test/data/segmentation/half_size.onnx");
+  const cv::Mat image = uniform(640, 480, 0, 51, 255);
+  expectMaps(SegmentationNetwork(p).segment(image), {1.0, 0.2, 0.0}, image.size());
+}
+
+TEST(SegmentationNetwork, ChannelOfObject) {
+  Params p = passThrough();
+  EXPECT_EQ(p.channelOf("2"), 2);
+  EXPECT_EQ(p.channelOf("3"), -1);
+  EXPECT_EQ(p.channelOf("cat"), -1);
+  p.channels = {"-", "cat", "dog"};
+  EXPECT_EQ(p.channelOf("dog"), 2);
+  EXPECT_EQ(p.channelOf("-"), -1);
+  EXPECT_EQ(p.channelOf("2"), -1);
+}
+
+TEST(SegmentationNetwork, BadModelsAndConfigurationsNamed) {
+  EXPECT_NE(errorOf(passThrough("test/data/segmentation/none.onnx")).find("no such file"),
+            std::string::npos);
+  const auto corrupt = test::scratchDir("segmentation_network") / "corrupt.onnx";
+  std::ofstream(corrupt) << "not a model";
+  EXPECT_NE(errorOf(passThrough(corrupt.string())).find("not an ONNX model"), std::string::npos);
+  Params seven = passThrough();
+  seven.classes = 7;
+  EXPECT_NE(errorOf(seven).find("output shape [1, 3, 12, 16] is not NCHW with 7 classes"),
+            std::string::npos)
+      << errorOf(seven);
+  Params listed = passThrough();
+  listed.channels = {"-", "cat"};
+  EXPECT_NE(errorOf(listed).find("channels names 2 channels, but classes is 3"), std::string::npos);
+  listed.channels = {"cat", "-", "cat"};
+  EXPECT_NE(errorOf(listed).find("'cat' twice"), std::string::npos);
+  Params wide = passThrough();
+  wide.input_width = 0;
+  EXPECT_NE(errorOf(wide).find("input_width"), std::string::npos);
+}
+
+TEST(SegmentationNetwork, BadImagesNamed) {
+  const SegmentationNetwork net(passThrough());
+  EXPECT_THROW(net.segment(cv::Mat()), InputError);
+  EXPECT_THROW(net.segment(cv::Mat(12, 16, CV_8UC1, cv::Scalar(0))), InputError);
+  EXPECT_THROW(net.segment(cv::Mat(12, 16, CV_32FC3, cv::Scalar::all(0))), InputError);
+}
+
+}  // namespace
+}  // namespace stocs
