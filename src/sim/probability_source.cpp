@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "stocs/sim/ground_truth_masks.h"
+#include "stocs/sim/segmentation_input_source.h"
 #include "stocs/sim/segmentation_simulator.h"
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
@@ -93,13 +94,14 @@ std::string probabilitySourceHelp() {
   return fmt::format(
       "'real' (the dataset's prob/ maps), 'sim:PRESET' (real maps where prob/ has one, the "
       "segmentation simulator on the ground-truth masks elsewhere) or 'simonly:PRESET' (always "
-      "simulated); presets: {}",
-      fmt::join(segmentationPresetNames(), ", "));
+      "simulated); presets: {}; segmentation inputs: {}",
+      fmt::join(segmentationPresetNames(), ", "), segmentationInputHelp());
 }
 
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed) {
   if (spec == "real") return std::make_unique<RealProbabilitySource>(dataset);
+  if (isSegmentationInputSpec(spec)) return makeSegmentationInputSource(spec, dataset, seed);
   for (const auto& [prefix, prefer_real] :
        {std::pair{"sim:", true}, std::pair{"simonly:", false}}) {
     const std::string p = prefix;
