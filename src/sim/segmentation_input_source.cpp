@@ -97,10 +97,13 @@ cv::Mat paintLabels(std::vector<InstanceMask> masks, cv::Size size) {
   return labels;
 }
 
-class SegmentationInputSource : public ProbabilitySource {
+}  // namespace
+
+/// The detections of one frame at a time, each part made when first asked for.
+class SegmentationInputSource::Frames {
  public:
-  SegmentationInputSource(std::string spec, const BopDataset& dataset, uint64_t seed,
-                          const SegmentationInputParams& params)
+  Frames(std::string spec, const BopDataset& dataset, uint64_t seed,
+         const SegmentationInputParams& params)
       : spec_(std::move(spec)),
         parsed_(parseSpec(spec_, dataset)),
         dataset_(dataset),
@@ -110,24 +113,55 @@ class SegmentationInputSource : public ProbabilitySource {
     params_.validate();
   }
 
-  std::string spec() const override { return spec_; }
+  const std::string& spec() const { return spec_; }
+  Form form() const { return parsed_.form; }
+  const BopDataset& dataset() const { return dataset_; }
+  const SegmentationInputParams& params() const { return params_; }
 
-  bool available(int, int, int obj_id) const override {
-    std::error_code ec;
-    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
+  void selectFrame(int scene_id, int im_id) {
+    if (frame_.scene_id == scene_id && frame_.im_id == im_id) return;
+    frame_ = FrameCache();
+    frame_.scene_id = scene_id;
+    frame_.im_id = im_id;
+    frame_.size = dataset_.loadDepth(scene_id, im_id).size();
   }
 
-  cv::Mat load(int scene_id, int im_id, int obj_id) const override {
-    selectFrame(scene_id, im_id);
-    switch (parsed_.form) {
-      case Form::kLabels:
-        return labelProbability(labels(), cv::Mat(), obj_id, params_);
-      case Form::kMasks:
-        return maskProbability(masksOf(obj_id), obj_id, size(), params_);
-      case Form::kBoxes:
-        return boxProbability(boxes(), obj_id, size(), params_);
+  cv::Size size() const { return frame_.size; }
+
+  const std::vector<InstanceMask>& masksOf(int obj_id) {
+    auto it = frame_.masks.find(obj_id);
+    if (it != frame_.masks.end()) return it->second;
+    const uint64_t seed = streamSeed(seed_, objectKey(frame_.scene_id, frame_.im_id, obj_id));
+    auto masks = parsed_.perturbation ? perturbedMasks(scene(), obj_id, *parsed_.perturbation, seed)
+                                      : groundTruthMasks(scene(), obj_id);
+    return frame_.masks.emplace(obj_id, std::move(masks)).first->second;
+  }
+
+  const cv::Mat& labels() {
+    if (frame_.labels.empty()) {
+      std::vector<InstanceMask> all;
+      std::vector<int> objects = scene().obj_ids;
+      std::sort(objects.begin(), objects.end());
+      objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
+      for (int obj : objects) {
+        const auto& masks = masksOf(obj);
+        all.insert(all.end(), masks.begin(), masks.end());
+      }
+      frame_.labels = paintLabels(std::move(all), size());
     }
-    return {};
+    return frame_.labels;
+  }
+
+  const std::vector<BoxDetection>& boxes() {
+    if (!frame_.boxes) {
+      if (parsed_.file_boxes) {
+        const auto it = parsed_.file_boxes->find({frame_.scene_id, frame_.im_id});
+        frame_.boxes = it == parsed_.file_boxes->end() ? std::vector<BoxDetection>() : it->second;
+      } else {
+        frame_.boxes = groundTruthBoxes();
+      }
+    }
+    return *frame_.boxes;
   }
 
  private:
@@ -141,19 +175,9 @@ class SegmentationInputSource : public ProbabilitySource {
     cv::Size size;
   };
 
-  void selectFrame(int scene_id, int im_id) const {
-    if (frame_.scene_id == scene_id && frame_.im_id == im_id) return;
-    frame_ = FrameCache();
-    frame_.scene_id = scene_id;
-    frame_.im_id = im_id;
-    frame_.size = dataset_.loadDepth(scene_id, im_id).size();
-  }
-
-  cv::Size size() const { return frame_.size; }
-
   /// The frame's visible ground-truth masks; a mask_visib/ folder missing an instance's file is
   /// an error rather than a reason to render.
-  const SegmentationScene& scene() const {
+  const SegmentationScene& scene() {
     if (!frame_.scene) {
       const int scene_id = frame_.scene_id, im_id = frame_.im_id;
       const size_t instances = dataset_.sceneGroundTruth(scene_id).at(im_id).size();
@@ -173,45 +197,9 @@ class SegmentationInputSource : public ProbabilitySource {
     return *frame_.scene;
   }
 
-  const std::vector<InstanceMask>& masksOf(int obj_id) const {
-    auto it = frame_.masks.find(obj_id);
-    if (it != frame_.masks.end()) return it->second;
-    const uint64_t seed = streamSeed(seed_, objectKey(frame_.scene_id, frame_.im_id, obj_id));
-    auto masks = parsed_.perturbation ? perturbedMasks(scene(), obj_id, *parsed_.perturbation, seed)
-                                      : groundTruthMasks(scene(), obj_id);
-    return frame_.masks.emplace(obj_id, std::move(masks)).first->second;
-  }
-
-  const cv::Mat& labels() const {
-    if (frame_.labels.empty()) {
-      std::vector<InstanceMask> all;
-      std::vector<int> objects = scene().obj_ids;
-      std::sort(objects.begin(), objects.end());
-      objects.erase(std::unique(objects.begin(), objects.end()), objects.end());
-      for (int obj : objects) {
-        const auto& masks = masksOf(obj);
-        all.insert(all.end(), masks.begin(), masks.end());
-      }
-      frame_.labels = paintLabels(std::move(all), size());
-    }
-    return frame_.labels;
-  }
-
-  const std::vector<BoxDetection>& boxes() const {
-    if (!frame_.boxes) {
-      if (parsed_.file_boxes) {
-        const auto it = parsed_.file_boxes->find({frame_.scene_id, frame_.im_id});
-        frame_.boxes = it == parsed_.file_boxes->end() ? std::vector<BoxDetection>() : it->second;
-      } else {
-        frame_.boxes = groundTruthBoxes();
-      }
-    }
-    return *frame_.boxes;
-  }
-
   /// Each visible instance's box (scene_gt_info.json, else its mask's bounding box), perturbed
   /// with boxes:perturbed.
-  std::vector<BoxDetection> groundTruthBoxes() const {
+  std::vector<BoxDetection> groundTruthBoxes() {
     const int scene_id = frame_.scene_id, im_id = frame_.im_id;
     const std::vector<BopGtInstance> gt = dataset_.sceneGroundTruth(scene_id).at(im_id);
     const std::vector<cv::Rect2f> visible = visibleBoxes(gt.size());
@@ -228,7 +216,7 @@ class SegmentationInputSource : public ProbabilitySource {
     return boxes;
   }
 
-  std::vector<cv::Rect2f> visibleBoxes(size_t instances) const {
+  std::vector<cv::Rect2f> visibleBoxes(size_t instances) {
     const int scene_id = frame_.scene_id, im_id = frame_.im_id;
     const auto info = dataset_.sceneDir(scene_id) / "scene_gt_info.json";
     std::error_code ec;
@@ -254,10 +242,66 @@ class SegmentationInputSource : public ProbabilitySource {
   GroundTruthMasks masks_;
   uint64_t seed_;
   SegmentationInputParams params_;
-  mutable FrameCache frame_;
+  FrameCache frame_;
 };
 
-}  // namespace
+SegmentationInputSource::SegmentationInputSource(const std::string& spec, const BopDataset& dataset,
+                                                 uint64_t seed,
+                                                 const SegmentationInputParams& params)
+    : frames_(std::make_unique<Frames>(spec, dataset, seed, params)) {}
+
+SegmentationInputSource::~SegmentationInputSource() = default;
+
+std::string SegmentationInputSource::spec() const {
+  return frames_->spec();
+}
+
+bool SegmentationInputSource::available(int, int, int obj_id) const {
+  std::error_code ec;
+  return std::filesystem::exists(frames_->dataset().modelPath(obj_id), ec);
+}
+
+cv::Mat SegmentationInputSource::load(int scene_id, int im_id, int obj_id) const {
+  frames_->selectFrame(scene_id, im_id);
+  const SegmentationInputParams& params = frames_->params();
+  switch (frames_->form()) {
+    case Form::kLabels:
+      return labelProbability(frames_->labels(), cv::Mat(), obj_id, params);
+    case Form::kMasks:
+      return maskProbability(frames_->masksOf(obj_id), obj_id, frames_->size(), params);
+    case Form::kBoxes:
+      return boxProbability(frames_->boxes(), obj_id, frames_->size(), params);
+  }
+  return {};
+}
+
+std::string SegmentationInputSource::form() const {
+  for (const auto& [name, form] : kForms) {
+    if (form == frames_->form()) return name;
+  }
+  return {};
+}
+
+cv::Mat SegmentationInputSource::labels(int scene_id, int im_id) const {
+  frames_->selectFrame(scene_id, im_id);
+  return frames_->labels();
+}
+
+std::vector<InstanceMask> SegmentationInputSource::masks(int scene_id, int im_id,
+                                                         const std::vector<int>& obj_ids) const {
+  frames_->selectFrame(scene_id, im_id);
+  std::vector<InstanceMask> all;
+  for (int obj : obj_ids) {
+    const auto& masks = frames_->masksOf(obj);
+    all.insert(all.end(), masks.begin(), masks.end());
+  }
+  return all;
+}
+
+std::vector<BoxDetection> SegmentationInputSource::boxes(int scene_id, int im_id) const {
+  frames_->selectFrame(scene_id, im_id);
+  return frames_->boxes();
+}
 
 bool isSegmentationInputSpec(const std::string& spec) {
   const std::string name = spec.substr(0, spec.find(':'));

@@ -31,4 +31,29 @@ std::unique_ptr<ProbabilitySource> makeSegmentationInputSource(
     const std::string& spec, const BopDataset& dataset, uint64_t seed,
     const SegmentationInputParams& params = {});
 
+/// The source makeSegmentationInputSource makes, with the detections themselves for a publisher of
+/// them (the scene publisher): each call as load() makes them, errors as load()'s.
+class SegmentationInputSource : public ProbabilitySource {
+ public:
+  SegmentationInputSource(const std::string& spec, const BopDataset& dataset, uint64_t seed,
+                          const SegmentationInputParams& params = {});
+  ~SegmentationInputSource() override;
+
+  std::string spec() const override;
+  bool available(int scene_id, int im_id, int obj_id) const override;
+  cv::Mat load(int scene_id, int im_id, int obj_id) const override;
+
+  /// "labels", "masks" or "boxes".
+  std::string form() const;
+  /// The label image (CV_16UC1, object id per pixel, 0 for none).
+  cv::Mat labels(int scene_id, int im_id) const;
+  /// The instance masks of the objects `obj_ids`.
+  std::vector<InstanceMask> masks(int scene_id, int im_id, const std::vector<int>& obj_ids) const;
+  std::vector<BoxDetection> boxes(int scene_id, int im_id) const;
+
+ private:
+  class Frames;
+  std::unique_ptr<Frames> frames_;
+};
+
 }  // namespace stocs
