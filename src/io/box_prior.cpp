@@ -36,10 +36,14 @@ float profile(float t, const SegmentationInputParams& params) {
 void drawBox(const BoxDetection& b, const SegmentationInputParams& params, cv::Mat& probability) {
   const cv::Rect2f& r = b.box;
   const float cx = r.x + 0.5f * r.width, cy = r.y + 0.5f * r.height;
-  const int u0 = std::max(0, static_cast<int>(std::floor(r.x)));
-  const int v0 = std::max(0, static_cast<int>(std::floor(r.y)));
-  const int u1 = std::min(probability.cols, static_cast<int>(std::ceil(r.x + r.width)));
-  const int v1 = std::min(probability.rows, static_cast<int>(std::ceil(r.y + r.height)));
+  // Clamped as floats first: a box far outside the image must not overflow an int.
+  const auto pixel = [](float x, int size) {
+    return static_cast<int>(std::clamp(x, 0.0f, static_cast<float>(size)));
+  };
+  const int u0 = pixel(std::floor(r.x), probability.cols);
+  const int v0 = pixel(std::floor(r.y), probability.rows);
+  const int u1 = pixel(std::ceil(r.x + r.width), probability.cols);
+  const int v1 = pixel(std::ceil(r.y + r.height), probability.rows);
   for (int v = v0; v < v1; ++v) {
     const float pv = profile(std::abs(v + 0.5f - cy) / (0.5f * r.height), params);
     float* row = probability.ptr<float>(v);

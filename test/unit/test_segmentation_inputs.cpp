@@ -118,6 +118,11 @@ TEST(SegmentationInputs, BoxesAreASoftPriorFallingOffTowardTheirEdges) {
   EXPECT_FLOAT_EQ(at(p, 5, 5), 0.0f);  // another class
   EXPECT_GT(at(p, 75, 55), 0.0f);      // a box cut by the image's border
   EXPECT_LE(at(p, 75, 55), 0.6f);
+  // Boxes far outside the image, or larger than an int, draw nothing or cover it.
+  const std::vector<BoxDetection> far = {{cv::Rect2f(1e30f, -1e30f, 5, 5), 3, 1.0f},
+                                         {cv::Rect2f(-1e20f, -1e20f, 3e20f, 3e20f), 4, 0.5f}};
+  EXPECT_EQ(cv::countNonZero(boxProbability(far, 3, kSize, params)), 0);
+  EXPECT_EQ(cv::countNonZero(boxProbability(far, 4, kSize, params)), kSize.area());
 }
 
 TEST(SegmentationInputs, MalformedBoxesNameTheBox) {
