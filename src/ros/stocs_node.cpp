@@ -424,10 +424,12 @@ std::future<FrameResult> StocsNode::requestEstimation(
     throw InputError("a camera_info was given without a depth image");
   }
   if (!given(request.cloud) && !given(request.depth)) {
-    if (!request.probabilities.empty() || given(request.labels) || !request.masks.masks.empty() ||
+    if (!request.probabilities.empty()) {
+      throw InputError("probabilities were given without a cloud or depth image");
+    }
+    if (given(request.labels) || !request.masks.masks.empty() ||
         !request.boxes.detections.empty()) {
-      throw InputError(
-          "probabilities, labels, masks or boxes were given without a cloud or depth image");
+      throw InputError("labels, masks or boxes were given without a cloud or depth image");
     }
     // Taken and queued under the synchronizer's lock: a frame matched between the two could start
     // first, publish a newer stamp, and this result would then be too old for the topics.
