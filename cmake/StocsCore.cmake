@@ -38,7 +38,8 @@ stocs_add_module(geometry PUBLIC stocs_util opencv_core)
 #catkin_lint: ignore_once EXTERNAL_INTERFACE_PATH
 target_include_directories(stocs_geometry SYSTEM PUBLIC $<BUILD_INTERFACE:${NANOFLANN_INCLUDE_DIR}>)
 stocs_add_module(io PUBLIC stocs_geometry
-  PRIVATE opencv_imgcodecs nlohmann_json::nlohmann_json ${PCL_COMMON_LIBRARIES} ${PCL_IO_LIBRARIES}
+  PRIVATE opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json ${PCL_COMMON_LIBRARIES}
+  ${PCL_IO_LIBRARIES}
   assimp::assimp)
 target_include_directories(stocs_io SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
 target_compile_definitions(stocs_io PRIVATE ${PCL_DEFINITIONS})

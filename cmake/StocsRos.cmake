@@ -12,7 +12,8 @@ list(SORT STOCS_ROS_EXPORTED_DEPENDS)
 find_package(catkin REQUIRED COMPONENTS ${STOCS_ROS_BUILD_COMPONENTS})
 find_package(yaml-cpp REQUIRED)
 
-add_message_files(DIRECTORY msg FILES ObjectPose.msg ObjectPoseArray.msg RejectedObject.msg)
+add_message_files(DIRECTORY msg FILES Detection2D.msg Detection2DArray.msg InstanceMask.msg
+  InstanceMaskArray.msg ObjectPose.msg ObjectPoseArray.msg RejectedObject.msg)
 add_service_files(DIRECTORY srv FILES Estimate.srv)
 generate_messages(DEPENDENCIES geometry_msgs sensor_msgs std_msgs)
 

@@ -22,8 +22,8 @@ target_link_libraries(stocs_ros_make_test_data stocs_core GTest::gtest opencv_im
 target_compile_definitions(stocs_ros_make_test_data PRIVATE
   STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}")
 add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
-  COMMAND stocs_ros_make_test_data ${STOCS_ROS_TEST_DATA}
-  DEPENDS stocs_ros_make_test_data
+  COMMAND stocs_ros_make_test_data ${STOCS_ROS_TEST_DATA} ${PROJECT_SOURCE_DIR}/config/demo.yaml
+  DEPENDS stocs_ros_make_test_data ${PROJECT_SOURCE_DIR}/config/demo.yaml
   COMMENT "Writing the generated dataset of the ROS tests")
 # The demo's scene (scripts/demo.sh makes the same one), written by the CLI as a user would. After
 # the writer above, which empties the whole folder first: side by side (make -j2) it would delete
@@ -82,6 +82,10 @@ add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA}
 # The same scene with maps from the package's segmentation network (segmentation_node).
 add_rostest(test/ros/network_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_scene_poses segmentation_node ${STOCS_ROS_TEST_DEPENDS})
+foreach(form labels masks boxes)
+  add_rostest(test/ros/segmentation_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA} form:=${form}
+    DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
+endforeach()
 add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "stocs/sim/depth_renderer.h"
+#include "stocs/sim/synthetic_dataset.h"
 
 namespace stocs::test {
 
@@ -68,6 +69,14 @@ Eigen::Isometry3f viewingPose(float distance) {
                       .toRotationMatrix();
   pose.translation() = Eigen::Vector3f(0.02f, -0.01f, distance);
   return pose;
+}
+
+void writeThreeObjectScene(const std::filesystem::path& root) {
+  SyntheticDatasetParams params;
+  params.layout.objects = 3;
+  params.layout.distractors = 1;
+  params.seed = 11;
+  writeSyntheticDataset(root, params);
 }
 
 Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root) {

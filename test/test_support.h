@@ -14,6 +14,7 @@
 #include "stocs/io/ply_writer.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/shape_meshes.h"
+#include "stocs/util/error.h"
 
 namespace cv {
 class Mat;
@@ -61,7 +62,21 @@ Eigen::Isometry3f viewingPose(float distance);
 /// viewingPose(0.6) with a 16-bit probability map; returns the model-to-camera pose (metres).
 Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root);
 
+/// Writes a generated BOP dataset of one image holding 3 objects and a distractor (seed 11).
+void writeThreeObjectScene(const std::filesystem::path& root);
+
 /// Runs a shell command, returning its exit code and capturing stdout and stderr in `output`.
 int runCommand(const std::string& command, std::string& output);
+
+/// Expects `f()` to throw InputError with a message holding `part`.
+template <class F>
+void expectInputError(F f, const std::string& part) {
+  try {
+    f();
+    ADD_FAILURE() << "no InputError; expected one holding '" << part << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
 
 }  // namespace stocs::test

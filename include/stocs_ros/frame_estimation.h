@@ -14,6 +14,7 @@
 #include "stocs/estimation/frame.h"
 #include "stocs/tracking/frame_tracker.h"
 #include "stocs_ros/estimation_setup.h"
+#include "stocs_ros/segmentation_conversion.h"
 
 namespace stocs_ros {
 
@@ -26,6 +27,7 @@ struct FrameMessages {
   std::vector<sensor_msgs::ImageConstPtr> probabilities;
   sensor_msgs::ImageConstPtr multichannel;  ///< input.probability: multichannel
   sensor_msgs::ImageConstPtr boundary;      ///< optional instance boundary map
+  SegmentationMessages segmentation;        ///< input.probability: labels, masks or boxes
 
   /// The header of the cloud or depth image: the outputs' frame and stamp.
   const std_msgs::Header& header() const;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "stocs/estimation/pipeline.h"
+#include "stocs/io/segmentation_inputs.h"
 #include "stocs/tracking/tracking_params.h"
 #include "stocs_ros/stamp_synchronizer.h"
 #include "stocs_ros/symmetric_pose.h"
@@ -26,7 +27,7 @@ struct ObjectConfig {
 };
 
 enum class DepthSource { kCloud, kDepthImage };
-enum class ProbabilitySource { kPerObject, kMultichannel };
+enum class ProbabilitySource { kPerObject, kMultichannel, kLabels, kMasks, kBoxes };
 
 struct InputConfig {
   DepthSource depth = DepthSource::kCloud;
@@ -35,8 +36,16 @@ struct InputConfig {
   std::vector<std::string> channels;
   double uint16_scale = 10000;  ///< mono16 probability = value / uint16_scale
   bool boundary = false;        ///< subscribe ~boundary for instance regions
+  /// kLabels, kMasks, kBoxes: the object name of each class id in order (class 0 first); "-"
+  /// marks a class to ignore. Empty: an object's class id is its `id`.
+  std::vector<std::string> labels;
+  bool label_confidence = false;  ///< kLabels: also wait for ~label_confidence
+  /// How labels, masks and boxes become probability maps.
+  stocs::SegmentationInputParams segmentation;
   SyncParams sync;
 
+  /// Whether the probability maps come from labels, masks or boxes.
+  bool segmentationForm() const;
   /// The input keys but `channels` (a list), for the file reader and the docs.
   static const stocs::ParamSet<InputConfig>& schema();
 };
@@ -63,6 +72,8 @@ struct NodeConfig {
   /// Every key of the file but the objects and input.channels (lists): keys, ranges, meanings.
   static const stocs::ParamSet<NodeConfig>& schema();
 
+  /// The class id of object `object` in labels, masks and boxes (input.labels, else its id).
+  int classOf(size_t object) const;
   /// Index of the object called `name`, or -1.
   int objectIndex(const std::string& name) const;
   /// The configured object names, comma-separated.

@@ -23,6 +23,7 @@
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/sim/probability_source.h"
+#include "stocs/sim/segmentation_input_source.h"
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/ground_truth_markers.h"
 #include "stocs_ros/node_config.h"
@@ -51,6 +52,12 @@ class ScenePublisher {
   void publish(const FrameRef& ref, const BopFrame& frame);
   void addProbabilities(const BopFrame& frame, const std_msgs::Header& header,
                         std::vector<Send>& sends);
+  /// input.probability labels, masks or boxes: checks ~probability_source and advertises the
+  /// form's topic.
+  void advertiseSegmentation();
+  /// The frame's labels, masks or boxes from ~probability_source.
+  void addSegmentation(const FrameRef& ref, const std_msgs::Header& header,
+                       std::vector<Send>& sends);
   void publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header);
   /// Warns, once, of an object in a frame's ground truth that the frame has no map for.
   void warnOfMissingMap(const FrameRef& ref, const BopFrame& frame);
@@ -62,6 +69,10 @@ class ScenePublisher {
   stocs::BopDataset dataset_;
   NodeConfig config_;  ///< the estimator's config: object names and ids, probability form
   std::unique_ptr<stocs::ProbabilitySource> probability_source_;  ///< ~probability
+  /// input.probability labels, masks or boxes: their source (~probability_source), used from the
+  /// timer's thread only, and each configured object's class id by object id.
+  std::unique_ptr<stocs::SegmentationInputSource> segmentation_;
+  std::map<int, int> class_of_;
   bool warned_of_missing_map_ = false;
   std::vector<int> object_ids_;
   std::string frame_id_;
@@ -74,7 +85,7 @@ class ScenePublisher {
   std::map<int, std::map<int, stocs::BopFrameCamera>> cameras_;  // by scene, image
   std::map<int, std::map<int, std::vector<stocs::BopGtInstance>>> ground_truth_;
 
-  ros::Publisher cloud_, depth_, camera_info_, rgb_, multichannel_, boundary_;
+  ros::Publisher cloud_, depth_, camera_info_, rgb_, multichannel_, boundary_, segmentation_pub_;
   std::vector<ros::Publisher> probabilities_;  // per object, input.probability: per_object
   tf2_ros::TransformBroadcaster tf_;
   ros::Publisher truth_markers_;

@@ -48,8 +48,20 @@ class StocsNode {
 
  private:
   using InputMessage = std::variant<sensor_msgs::PointCloud2ConstPtr, sensor_msgs::ImageConstPtr,
-                                    sensor_msgs::CameraInfoConstPtr>;
-  enum class InputKind { kCloud, kDepth, kCameraInfo, kProbability, kMultichannel, kBoundary };
+                                    sensor_msgs::CameraInfoConstPtr, InstanceMaskArrayConstPtr,
+                                    Detection2DArrayConstPtr>;
+  enum class InputKind {
+    kCloud,
+    kDepth,
+    kCameraInfo,
+    kProbability,
+    kMultichannel,
+    kBoundary,
+    kLabels,
+    kLabelConfidence,
+    kMasks,
+    kBoxes
+  };
   struct Input {
     InputKind kind;
     size_t object;      ///< kProbability: index into config.objects

@@ -3,33 +3,16 @@
 #include <fmt/format.h>
 
 #include <fstream>
-#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <tuple>
 
+#include "json_fields.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
 using nlohmann::json;
-
-namespace {
-
-/// The value of `key` in an entry (`where` names it): an integer of at least `min`.
-int integerAtLeast(const json& entry, const char* key, int min, const std::string& where) {
-  if (!entry.contains(key)) throw InputError(fmt::format("{}: missing key '{}'", where, key));
-  const json& v = entry.at(key);
-  // Every JSON integer converts to double closely enough for a range check.
-  if (!v.is_number_integer() || v.get<double>() < min ||
-      v.get<double>() > std::numeric_limits<int>::max()) {
-    throw InputError(fmt::format("{}: '{}' is {}; it must be an integer of at least {}", where, key,
-                                 v.dump(), min));
-  }
-  return v.get<int>();
-}
-
-}  // namespace
 
 std::vector<BopTarget> parseBopTargets(const std::string& text, const std::string& name) {
   json list;

@@ -7,25 +7,21 @@
 #include "stocs/util/error.h"
 #include "stocs_ros/cloud_conversion.h"
 #include "stocs_ros/image_conversion.h"
+#include "stocs_ros/input_naming.h"
+#include "stocs_ros/segmentation_conversion.h"
 
 namespace stocs_ros {
 using stocs::InputError;
 
 namespace {
 
-/// Runs `convert`, prefixing the message of any InputError with `what`.
-template <class Convert>
-auto naming(const std::string& what, Convert&& convert) {
-  try {
-    return convert();
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", what, e.what()));
-  }
-}
-
-/// Probability images by object index (empty where the frame has none).
-std::vector<cv::Mat> probabilities(const EstimationJob& job, const NodeConfig& config) {
+/// Probability images by object index (empty where the frame has none); `size`: the cloud's.
+std::vector<cv::Mat> probabilities(const EstimationJob& job, const NodeConfig& config,
+                                   cv::Size size) {
   const FrameMessages& frame = job.frame;
+  if (config.input.segmentationForm()) {
+    return probabilitiesFromSegmentation(frame.segmentation, job.objects, config, size);
+  }
   std::vector<cv::Mat> out(config.objects.size());
   if (frame.multichannel) {
     const std::vector<cv::Mat> channels = naming("multi-channel probability image", [&] {
@@ -67,7 +63,8 @@ stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
         "depth image", [&] { return cloudFromDepthImage(messages.depth, *messages.camera_info); });
     frame.camera = intrinsicsFromCameraInfo(*messages.camera_info);
   }
-  const std::vector<cv::Mat> probability = probabilities(job, config);
+  const std::vector<cv::Mat> probability =
+      probabilities(job, config, cv::Size(frame.cloud.width, frame.cloud.height));
   for (size_t i = 0; i < probability.size(); ++i) {
     if (!probability[i].empty()) frame.probabilities[config.objects[i].name] = probability[i];
   }

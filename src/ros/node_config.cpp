@@ -188,33 +188,47 @@ ObjectConfig readObject(MapReader reader, int position, const PathContext& paths
   return o;
 }
 
-void checkChannels(const NodeConfig& c) {
+/// Checks a list of object names of the input section (`key`: "channels" or "labels"), used only
+/// when `used`: every name is a configured object or "-", none twice, every object named.
+void checkObjectList(const NodeConfig& c, const std::vector<std::string>& list,
+                     const std::string& key, bool used, const std::string& when) {
   const std::string file = c.file.string();
-  if (c.input.probability != ProbabilitySource::kMultichannel) {
-    if (!c.input.channels.empty()) {
-      throw InputError(fmt::format(
-          "{}: input.channels is only used with input.probability: multichannel", file));
+  if (!used) {
+    if (!list.empty()) {
+      throw InputError(
+          fmt::format("{}: input.{} is only used with input.probability: {}", file, key, when));
     }
     return;
   }
   std::set<std::string> seen;
-  for (const std::string& name : c.input.channels) {
+  for (const std::string& name : list) {
     if (name == "-") continue;
     if (c.objectIndex(name) < 0) {
       throw InputError(
-          fmt::format("{}: input.channels names '{}', which is not a configured "
-                      "object ({}); use '-' for a channel to ignore",
-                      file, name, c.objectNames()));
+          fmt::format("{}: input.{} names '{}', which is not a configured "
+                      "object ({}); use '-' for one to ignore",
+                      file, key, name, c.objectNames()));
     }
     if (!seen.insert(name).second) {
-      throw InputError(fmt::format("{}: input.channels names '{}' twice", file, name));
+      throw InputError(fmt::format("{}: input.{} names '{}' twice", file, key, name));
     }
   }
   for (const ObjectConfig& o : c.objects) {
-    if (!seen.count(o.name)) {
-      throw InputError(
-          fmt::format("{}: object '{}' has no channel in input.channels", file, o.name));
+    if (!seen.count(o.name) && (key == "channels" || !list.empty())) {
+      throw InputError(fmt::format("{}: object '{}' has no {} in input.{}", file, o.name,
+                                   key == "channels" ? "channel" : "class", key));
     }
+  }
+}
+
+void checkInputLists(const NodeConfig& c) {
+  checkObjectList(c, c.input.channels, "channels",
+                  c.input.probability == ProbabilitySource::kMultichannel, "multichannel");
+  checkObjectList(c, c.input.labels, "labels", c.input.segmentationForm(),
+                  "labels, masks or boxes");
+  if (c.input.label_confidence && c.input.probability != ProbabilitySource::kLabels) {
+    throw InputError(fmt::format(
+        "{}: input.label_confidence is only used with input.probability: labels", c.file.string()));
   }
 }
 
@@ -294,14 +308,25 @@ const stocs::ParamSet<InputConfig>& InputConfig::schema() {
                   "cloud: organized ~cloud; depth: ~depth + ~camera_info (REP 118)")
           .choice(&InputConfig::probability, "probability",
                   {{"per_object", ProbabilitySource::kPerObject},
-                   {"multichannel", ProbabilitySource::kMultichannel}},
-                  "per_object: ~probability/<name>; multichannel: one ~probability")
+                   {"multichannel", ProbabilitySource::kMultichannel},
+                   {"labels", ProbabilitySource::kLabels},
+                   {"masks", ProbabilitySource::kMasks},
+                   {"boxes", ProbabilitySource::kBoxes}},
+                  "per_object: ~probability/<name>; multichannel: one ~probability; labels: "
+                  "~labels; masks: ~masks; boxes: ~boxes")
           .add(&InputConfig::channels, "channels", "", std::nullopt,
                "multichannel: the object name of each channel in order, \"-\" to ignore one")
           .add(&InputConfig::uint16_scale, "uint16_scale", "", stocs::ParamRange::aboveUpTo(0, 1e9),
                "mono16 probability = value / uint16_scale")
           .add(&InputConfig::boundary, "boundary",
                "also wait for ~boundary (mono8, 255 interior) and use its regions")
+          .add(&InputConfig::labels, "labels", "", std::nullopt,
+               "labels, masks, boxes: the object name of each class id from 0, \"-\" to ignore "
+               "one; empty: class id = object id")
+          .add(&InputConfig::label_confidence, "label_confidence",
+               "labels: also wait for ~label_confidence (32FC1, mono16, mono8)")
+          .nest(&InputConfig::segmentation, "segmentation",
+                stocs::SegmentationInputParams::schema())
           .nest(&InputConfig::sync, "sync", SyncParams::schema());
   return schema;
 }
@@ -328,6 +353,17 @@ const stocs::ParamSet<NodeConfig>& NodeConfig::schema() {
           .nest(&NodeConfig::estimation, "estimation", stocs::PipelineParams::schema())
           .nest(&NodeConfig::tracking, "tracking", stocs::TrackingParams::schema(), "Tracking");
   return schema;
+}
+
+bool InputConfig::segmentationForm() const {
+  return probability == ProbabilitySource::kLabels || probability == ProbabilitySource::kMasks ||
+         probability == ProbabilitySource::kBoxes;
+}
+
+int NodeConfig::classOf(size_t object) const {
+  const auto it = std::find(input.labels.begin(), input.labels.end(), objects[object].name);
+  return it == input.labels.end() ? objects[object].id
+                                  : static_cast<int>(it - input.labels.begin());
 }
 
 int NodeConfig::objectIndex(const std::string& name) const {
@@ -374,7 +410,7 @@ NodeConfig loadNodeConfig(const fs::path& file, const fs::path& dataset) {
   SchemaReader schema(reader);
   schema.read(NodeConfig::schema(), c);
   schema.rejectUnknownKeys();
-  checkChannels(c);
+  checkInputLists(c);
   if (c.model_cache_setting.empty()) {
     c.model_cache = stocs::ModelCache::defaultDirectory();
   } else if (c.model_cache_setting != "none") {

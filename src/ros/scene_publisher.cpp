@@ -12,6 +12,7 @@
 #include "stocs/sim/sequence_info.h"
 #include "stocs/util/error.h"
 #include "stocs_ros/cloud_conversion.h"
+#include "stocs_ros/segmentation_conversion.h"
 
 namespace stocs_ros {
 using stocs::InputError;
@@ -45,12 +46,29 @@ std::pair<int, std::string> probabilityFormat(const std::string& encoding, size_
   return {CV_32F, "32FC" + n};
 }
 
+/// "labels", "masks" or "boxes": the config's segmentation input.
+std::string segmentationForm(const NodeConfig& config) {
+  switch (config.input.probability) {
+    case ProbabilitySource::kLabels:
+      return "labels";
+    case ProbabilitySource::kMasks:
+      return "masks";
+    default:
+      return "boxes";
+  }
+}
+
 /// The probability maps the ~probability_source parameter names, as `stocs estimate --prob` takes
 /// them; simulated maps draw on the estimator's seed.
 std::unique_ptr<stocs::ProbabilitySource> probabilitySource(const ros::NodeHandle& pnh,
                                                             const stocs::BopDataset& dataset,
                                                             const NodeConfig& config) {
-  const std::string spec = pnh.param<std::string>("probability_source", "real");
+  std::string spec = pnh.param<std::string>("probability_source", "real");
+  // A segmentation input plays the frame's ground-truth detections unless a spec of its form is
+  // given: "real" (the launch files' default) means the dataset's own data.
+  if (config.input.segmentationForm() && !stocs::isSegmentationInputSpec(spec)) {
+    spec = segmentationForm(config);
+  }
   try {
     return stocs::makeProbabilitySource(spec, dataset, config.estimation.stocs.seed);
   } catch (const InputError& e) {
@@ -131,7 +149,9 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
   rgb_ = pnh_.advertise<sensor_msgs::Image>("rgb", 2);
   boundary_ = pnh_.advertise<sensor_msgs::Image>("boundary", 2);
   truth_markers_ = pnh_.advertise<visualization_msgs::MarkerArray>("ground_truth_markers", 2);
-  if (config_.input.probability == ProbabilitySource::kMultichannel) {
+  if (config_.input.segmentationForm()) {
+    advertiseSegmentation();
+  } else if (config_.input.probability == ProbabilitySource::kMultichannel) {
     multichannel_ = pnh_.advertise<sensor_msgs::Image>("probability", 2);
   } else {
     // In a child handle, so that remapping ~probability moves every per-object topic.
@@ -211,7 +231,11 @@ void ScenePublisher::publish(const FrameRef& ref, const BopFrame& frame) {
   if (!frame.bgr.empty()) {
     sends.push_back(sending(rgb_, cv_bridge::CvImage(header, "bgr8", frame.bgr).toImageMsg()));
   }
-  addProbabilities(frame, header, sends);
+  if (segmentation_) {
+    addSegmentation(ref, header, sends);
+  } else {
+    addProbabilities(frame, header, sends);
+  }
   if (publish_boundary_) {
     // A frame without a map gets an all-interior one, so that a node waiting for boundaries still
     // receives complete frames.
@@ -253,6 +277,50 @@ void ScenePublisher::addProbabilities(const BopFrame& frame, const std_msgs::Hea
   cv::merge(channels, merged);
   sends.push_back(
       sending(multichannel_, cv_bridge::CvImage(header, encoding, merged).toImageMsg()));
+}
+
+void ScenePublisher::advertiseSegmentation() {
+  const std::string spec = probability_source_->spec();
+  if (!stocs::isSegmentationInputSpec(spec) || spec.rfind(segmentationForm(config_), 0) != 0) {
+    throw InputError(fmt::format(
+        "parameter probability_source '{}' does not give input.probability '{}'; use {}, "
+        "{}:perturbed "
+        "or another spec of that form",
+        spec, segmentationForm(config_), segmentationForm(config_), segmentationForm(config_)));
+  }
+  segmentation_ = std::make_unique<stocs::SegmentationInputSource>(
+      spec, dataset_, config_.estimation.stocs.seed, config_.input.segmentation);
+  for (size_t i = 0; i < config_.objects.size(); ++i) {
+    class_of_[config_.objects[i].id] = config_.classOf(i);
+  }
+  switch (config_.input.probability) {
+    case ProbabilitySource::kLabels:
+      segmentation_pub_ = pnh_.advertise<sensor_msgs::Image>("labels", 2);
+      break;
+    case ProbabilitySource::kMasks:
+      segmentation_pub_ = pnh_.advertise<InstanceMaskArray>("masks", 2);
+      break;
+    default:
+      segmentation_pub_ = pnh_.advertise<Detection2DArray>("boxes", 2);
+  }
+}
+
+void ScenePublisher::addSegmentation(const FrameRef& ref, const std_msgs::Header& header,
+                                     std::vector<Send>& sends) {
+  const auto send = [&](auto msg) {
+    msg->header = header;
+    sends.push_back(sending(segmentation_pub_, msg));
+  };
+  switch (config_.input.probability) {
+    case ProbabilitySource::kLabels:
+      send(labelsToMsg(segmentation_->labels(ref.scene, ref.image), class_of_));
+      break;
+    case ProbabilitySource::kMasks:
+      send(masksToMsg(segmentation_->masks(ref.scene, ref.image, object_ids_), class_of_));
+      break;
+    default:
+      send(boxesToMsg(segmentation_->boxes(ref.scene, ref.image), class_of_));
+  }
 }
 
 void ScenePublisher::publishGroundTruth(const FrameRef& ref, const std_msgs::Header& header) {

@@ -35,6 +35,7 @@ void checkSameInputs(const NodeConfig& now, const NodeConfig& fresh) {
   const InputConfig &a = now.input, &b = fresh.input;
   if (names_now != names_fresh || a.depth != b.depth || a.probability != b.probability ||
       a.channels != b.channels || a.boundary != b.boundary || a.uint16_scale != b.uint16_scale ||
+      a.labels != b.labels || a.label_confidence != b.label_confidence ||
       a.sync.tolerance != b.sync.tolerance || a.sync.queue_size != b.sync.queue_size ||
       a.sync.max_age != b.sync.max_age) {
     throw InputError(fmt::format(
@@ -76,32 +77,63 @@ bool given(const sensor_msgs::CameraInfo& info) {
          std::any_of(info.K.begin(), info.K.end(), [](double k) { return k != 0; });
 }
 
+/// The segmentation of an ~estimate request for input.probability labels, masks or boxes (an
+/// empty masks or boxes list: nothing detected).
+SegmentationMessages requestSegmentation(Estimate::Request& request, const NodeConfig& config) {
+  if (!request.probabilities.empty()) {
+    throw InputError(
+        "probabilities were given, but input.probability takes labels, masks or boxes; give "
+        "those instead");
+  }
+  SegmentationMessages s;
+  switch (config.input.probability) {
+    case ProbabilitySource::kLabels:
+      if (!given(request.labels)) {
+        throw InputError("input.probability is labels, but no label image (labels) was given");
+      }
+      s.labels = boost::make_shared<sensor_msgs::Image>(std::move(request.labels));
+      if (given(request.label_confidence)) {
+        s.label_confidence =
+            boost::make_shared<sensor_msgs::Image>(std::move(request.label_confidence));
+      }
+      break;
+    case ProbabilitySource::kMasks:
+      s.masks = boost::make_shared<InstanceMaskArray>(std::move(request.masks));
+      break;
+    default:
+      s.boxes = boost::make_shared<Detection2DArray>(std::move(request.boxes));
+  }
+  return s;
+}
+
 /// The frame of an ~estimate request with explicit inputs: a cloud, or a depth image with its
 /// camera_info, and one probability image per requested object (`objects`, indices into the
-/// `object_count` configured objects).
+/// configured objects), or the segmentation input.probability names.
 FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>& objects,
-                           size_t object_count) {
+                           const NodeConfig& config) {
   if (given(request.cloud) && given(request.depth)) {
     throw InputError("both a cloud and a depth image were given; pass one of them");
   }
   if (given(request.depth) && !given(request.camera_info)) {
     throw InputError("a depth image was given without its camera_info (the camera's intrinsics)");
   }
-  if (request.probabilities.size() != objects.size()) {
+  FrameMessages frame;
+  if (config.input.segmentationForm()) {
+    frame.segmentation = requestSegmentation(request, config);
+  } else if (request.probabilities.size() != objects.size()) {
     throw InputError(
         fmt::format("{} probability images for {} objects; give one per object, in "
                     "the order of `objects`",
                     request.probabilities.size(), objects.size()));
   }
-  FrameMessages frame;
   if (given(request.cloud)) {
     frame.cloud = boost::make_shared<sensor_msgs::PointCloud2>(std::move(request.cloud));
   } else {
     frame.depth = boost::make_shared<sensor_msgs::Image>(std::move(request.depth));
     frame.camera_info = boost::make_shared<sensor_msgs::CameraInfo>(std::move(request.camera_info));
   }
-  frame.probabilities.resize(object_count);
-  for (size_t k = 0; k < objects.size(); ++k) {
+  frame.probabilities.resize(config.objects.size());
+  for (size_t k = 0; k < request.probabilities.size(); ++k) {
     frame.probabilities[objects[k]] =
         boost::make_shared<sensor_msgs::Image>(std::move(request.probabilities[k]));
   }
@@ -176,12 +208,24 @@ void StocsNode::subscribeInputs() {
     add("depth", InputKind::kDepth);
     add("camera_info", InputKind::kCameraInfo);
   }
-  if (config.input.probability == ProbabilitySource::kMultichannel) {
-    add("probability", InputKind::kMultichannel);
-  } else {
-    for (size_t i = 0; i < config.objects.size(); ++i) {
-      add(config.objects[i].name, InputKind::kProbability, i);
-    }
+  switch (config.input.probability) {
+    case ProbabilitySource::kMultichannel:
+      add("probability", InputKind::kMultichannel);
+      break;
+    case ProbabilitySource::kLabels:
+      add("labels", InputKind::kLabels);
+      if (config.input.label_confidence) add("label_confidence", InputKind::kLabelConfidence);
+      break;
+    case ProbabilitySource::kMasks:
+      add("masks", InputKind::kMasks);
+      break;
+    case ProbabilitySource::kBoxes:
+      add("boxes", InputKind::kBoxes);
+      break;
+    case ProbabilitySource::kPerObject:
+      for (size_t i = 0; i < config.objects.size(); ++i) {
+        add(config.objects[i].name, InputKind::kProbability, i);
+      }
   }
   if (config.input.boundary) add("boundary", InputKind::kBoundary);
   // Before the first subscription: with a multi-threaded nodelet manager, callbacks may start at
@@ -200,6 +244,12 @@ void StocsNode::subscribeInputs() {
         break;
       case InputKind::kCameraInfo:
         subscribe<sensor_msgs::CameraInfo>(i, queue);
+        break;
+      case InputKind::kMasks:
+        subscribe<InstanceMaskArray>(i, queue);
+        break;
+      case InputKind::kBoxes:
+        subscribe<Detection2DArray>(i, queue);
         break;
       default:
         subscribe<sensor_msgs::Image>(i, queue);
@@ -287,6 +337,18 @@ FrameMessages StocsNode::toFrame(std::vector<InputMessage>& messages, size_t obj
       case InputKind::kBoundary:
         frame.boundary = std::get<sensor_msgs::ImageConstPtr>(m);
         break;
+      case InputKind::kLabels:
+        frame.segmentation.labels = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case InputKind::kLabelConfidence:
+        frame.segmentation.label_confidence = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case InputKind::kMasks:
+        frame.segmentation.masks = std::get<InstanceMaskArrayConstPtr>(m);
+        break;
+      case InputKind::kBoxes:
+        frame.segmentation.boxes = std::get<Detection2DArrayConstPtr>(m);
+        break;
     }
   }
   return frame;
@@ -365,6 +427,10 @@ std::future<FrameResult> StocsNode::requestEstimation(
     if (!request.probabilities.empty()) {
       throw InputError("probabilities were given without a cloud or depth image");
     }
+    if (given(request.labels) || !request.masks.masks.empty() ||
+        !request.boxes.detections.empty()) {
+      throw InputError("labels, masks or boxes were given without a cloud or depth image");
+    }
     // Taken and queued under the synchronizer's lock: a frame matched between the two could start
     // first, publish a newer stamp, and this result would then be too old for the topics.
     std::lock_guard<std::mutex> lock(sync_mutex_);
@@ -376,7 +442,7 @@ std::future<FrameResult> StocsNode::requestEstimation(
     job.frame = *latest_frame_;
     return worker_->request({std::move(job), setup, true, latest_timeline_});
   }
-  job.frame = requestFrame(request, job.objects, config.objects.size());
+  job.frame = requestFrame(request, job.objects, config);
   std::lock_guard<std::mutex> lock(sync_mutex_);
   return worker_->request({std::move(job), setup, true, sync_->timeJumps()});
 }

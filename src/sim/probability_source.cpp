@@ -10,6 +10,7 @@
 
 #include "network_probability_source.h"
 #include "stocs/sim/ground_truth_masks.h"
+#include "stocs/sim/segmentation_input_source.h"
 #include "stocs/sim/segmentation_simulator.h"
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
@@ -94,8 +95,9 @@ std::string probabilitySourceHelp() {
   return fmt::format(
       "'real' (the dataset's prob/ maps), 'sim:PRESET' (real maps where prob/ has one, the "
       "segmentation simulator on the ground-truth masks elsewhere) or 'simonly:PRESET' (always "
-      "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images); presets: {}",
-      fmt::join(segmentationPresetNames(), ", "));
+      "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images); presets: {}; "
+      "segmentation inputs: {}",
+      fmt::join(segmentationPresetNames(), ", "), segmentationInputHelp());
 }
 
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
@@ -103,6 +105,7 @@ std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec
   if (spec == "real") return std::make_unique<RealProbabilitySource>(dataset);
   if (spec.rfind("onnx:", 0) == 0)
     return makeNetworkProbabilitySource(spec, spec.substr(5), dataset);
+  if (isSegmentationInputSpec(spec)) return makeSegmentationInputSource(spec, dataset, seed);
   for (const auto& [prefix, prefer_real] :
        {std::pair{"sim:", true}, std::pair{"simonly:", false}}) {
     const std::string p = prefix;

@@ -1,7 +1,8 @@
 // Writes the generated data the ROS integration tests play: the one-image BOP dataset of the CLI
 // test (an asymmetric box at a known pose) and node configurations for it, one per input form; and
-// a copy with two objects that are not in the frame, for the rejection test.
-//   make_test_data OUT_DIR
+// a copy with two objects that are not in the frame, for the rejection test; and the demo's
+// configuration with each segmentation input form, for the generated scene.
+//   make_test_data OUT_DIR DEMO_CONFIG
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stocs/geometry/mesh.h"
+#include "stocs/io/bop_dataset.h"
 #include "stocs/io/ply_writer.h"
 #include "stocs/sim/shape_meshes.h"
 #include "test_support.h"
@@ -58,8 +60,8 @@ void writeAbsentObjects(const std::filesystem::path& root) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::cerr << "usage: " << argv[0] << " OUT_DIR\n";
+  if (argc != 3) {
+    std::cerr << "usage: " << argv[0] << " OUT_DIR DEMO_CONFIG\n";
     return 2;
   }
   const std::filesystem::path out = argv[1];
@@ -77,5 +79,10 @@ int main(int argc, char** argv) {
       << "  channels: [\"-\", box]\n  boundary: true\n";
   writeAbsentObjects(out / "absent");
   std::ofstream(out / "absent.yaml") << kAbsentObjects;
+  const std::string demo = stocs::readTextFile(argv[2]);
+  for (const char* form : {"labels", "masks", "boxes"}) {
+    std::ofstream(out / (std::string("synth_scene_") + form + ".yaml"))
+        << demo << "\ninput:\n  probability: " << form << "\n";
+  }
   return 0;
 }

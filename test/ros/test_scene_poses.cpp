@@ -3,9 +3,15 @@
 // node reports on ~objects (instance recall), at least one pose per object is reported, and TF
 // carries every reported pose as <object> or <object>_<k>. Parameters (private): dataset (a path,
 // or a name under STOCS_DATASETS when real_data), scene, image, node, max_adds, min_recall, and
-// obj_ids (the objects to check; empty: every object of the frame's ground truth).
+// obj_ids (the objects to check; empty: every object of the frame's ground truth), and
+// segmentation (labels, masks or boxes: ~estimate is also called with the played cloud and that
+// segmentation message, and must find the objects the same way; cloud_topic names the cloud).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <stocs_ros/Detection2DArray.h>
+#include <stocs_ros/Estimate.h>
+#include <stocs_ros/InstanceMaskArray.h>
 #include <stocs_ros/ObjectPoseArray.h>
 #include <tf2_eigen/tf2_eigen.h>
 #include <tf2_ros/transform_listener.h>
@@ -29,18 +35,15 @@ struct Expected {
   double max_adds = 0.1;  ///< fraction of the diameter: the evaluation's success threshold
   double min_recall = 1.0;
   std::vector<int> obj_ids;
+  std::string segmentation;  ///< labels, masks or boxes: also test ~estimate with that input
+  std::string cloud_topic = "/camera/depth_registered/points";
 };
 Expected g_expected;
 
 constexpr double kFirstOutputTimeout = 240;  // seconds: includes preparing six uncached models
 
-TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
-  std::filesystem::path dataset = g_expected.dataset;
-  if (g_expected.real_data) {
-    STOCS_REQUIRE_DATASETS(root);
-    dataset = root / g_expected.dataset;
-  }
-  // Ground-truth poses (metres) of the checked objects.
+/// Ground-truth poses (metres) of the checked objects in the played frame.
+std::map<int, std::vector<Eigen::Isometry3d>> checkedTruth(const std::filesystem::path& dataset) {
   std::map<int, std::vector<Eigen::Isometry3d>> truth;
   const std::set<int> checked(g_expected.obj_ids.begin(), g_expected.obj_ids.end());
   const auto scene_truth = stocs::BopDataset(dataset).sceneGroundTruth(g_expected.scene);
@@ -51,25 +54,14 @@ TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
     t.translation() = g.t_mm / 1000.0;
     truth[g.obj_id].push_back(t);
   }
-  ASSERT_FALSE(truth.empty()) << "no ground truth of the checked objects in the frame";
+  return truth;
+}
 
-  tf2_ros::Buffer buffer;
-  tf2_ros::TransformListener listener(buffer);
-  const std::optional<ObjectPoseArray> message =
-      waitForMessage<ObjectPoseArray>(g_expected.node + "/objects", kFirstOutputTimeout,
-                                      [](const ObjectPoseArray& m) { return !m.objects.empty(); });
-  ASSERT_TRUE(message) << "no estimates on " << g_expected.node << "/objects";
-
-  std::map<int, std::vector<Eigen::Isometry3d>> reported;
-  for (const ObjectPose& o : message->objects) {
-    const Eigen::Isometry3d pose = poseToEigen(o.pose.pose);
-    reported[o.id].push_back(pose);
-    const std::string frame = instanceName(o.name, o.instance);
-    const Eigen::Isometry3d on_tf = tf2::transformToEigen(buffer.lookupTransform(
-        message->header.frame_id, frame, message->header.stamp, ros::Duration(10.0)));
-    EXPECT_LT(translationError(on_tf, pose), 1e-6) << frame << " on TF";
-    EXPECT_LT(rotationError(on_tf, pose), 1e-6) << frame << " on TF";
-  }
+/// Each checked object has a pose in `reported` and at least min_recall of its instances are
+/// within max_adds of one.
+void expectInstancesFound(const std::filesystem::path& dataset,
+                          const std::map<int, std::vector<Eigen::Isometry3d>>& truth,
+                          std::map<int, std::vector<Eigen::Isometry3d>> reported) {
   for (const auto& [obj_id, instances] : truth) {
     EXPECT_FALSE(reported[obj_id].empty()) << "object " << obj_id << " got no pose";
     size_t matched = 0;
@@ -90,6 +82,79 @@ TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
   }
 }
 
+TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
+  std::filesystem::path dataset = g_expected.dataset;
+  if (g_expected.real_data) {
+    STOCS_REQUIRE_DATASETS(root);
+    dataset = root / g_expected.dataset;
+  }
+  const auto truth = checkedTruth(dataset);
+  ASSERT_FALSE(truth.empty()) << "no ground truth of the checked objects in the frame";
+
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);
+  const std::optional<ObjectPoseArray> message =
+      waitForMessage<ObjectPoseArray>(g_expected.node + "/objects", kFirstOutputTimeout,
+                                      [](const ObjectPoseArray& m) { return !m.objects.empty(); });
+  ASSERT_TRUE(message) << "no estimates on " << g_expected.node << "/objects";
+
+  std::map<int, std::vector<Eigen::Isometry3d>> reported;
+  for (const ObjectPose& o : message->objects) {
+    const Eigen::Isometry3d pose = poseToEigen(o.pose.pose);
+    reported[o.id].push_back(pose);
+    const std::string frame = instanceName(o.name, o.instance);
+    const Eigen::Isometry3d on_tf = tf2::transformToEigen(buffer.lookupTransform(
+        message->header.frame_id, frame, message->header.stamp, ros::Duration(10.0)));
+    EXPECT_LT(translationError(on_tf, pose), 1e-6) << frame << " on TF";
+    EXPECT_LT(rotationError(on_tf, pose), 1e-6) << frame << " on TF";
+  }
+  expectInstancesFound(dataset, truth, reported);
+}
+
+/// ~estimate on explicit inputs of a segmentation form (~segmentation: labels, masks or boxes):
+/// the played cloud with the played segmentation message finds the objects; probabilities instead
+/// are refused.
+TEST(ScenePoses, ServiceTakesTheSegmentationInput) {
+  if (g_expected.segmentation.empty()) GTEST_SKIP() << "no segmentation form given";
+  const std::string topic = "/segmentation/" + g_expected.segmentation;
+  const auto cloud = waitForMessage<sensor_msgs::PointCloud2>(g_expected.cloud_topic, 60);
+  ASSERT_TRUE(cloud) << g_expected.cloud_topic;
+  Estimate srv;
+  srv.request.cloud = *cloud;
+  bool received = false;
+  if (g_expected.segmentation == "labels") {
+    const auto m = waitForMessage<sensor_msgs::Image>(topic, 60);
+    if ((received = m.has_value())) srv.request.labels = *m;
+  } else if (g_expected.segmentation == "masks") {
+    const auto m = waitForMessage<InstanceMaskArray>(topic, 60);
+    if ((received = m.has_value())) srv.request.masks = *m;
+  } else {
+    const auto m = waitForMessage<Detection2DArray>(topic, 60);
+    if ((received = m.has_value())) srv.request.boxes = *m;
+  }
+  ASSERT_TRUE(received) << topic;
+  const std::string name = g_expected.node + "/estimate";
+  ASSERT_TRUE(ros::service::waitForService(name, ros::Duration(kFirstOutputTimeout)));
+  Estimate with_probabilities = srv;
+  ASSERT_TRUE(ros::service::call(name, srv));
+  ASSERT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_EQ(srv.response.result.header.stamp, cloud->header.stamp);
+  std::map<int, std::vector<Eigen::Isometry3d>> reported;
+  for (const ObjectPose& o : srv.response.result.objects) {
+    reported[o.id].push_back(poseToEigen(o.pose.pose));
+  }
+  const std::filesystem::path dataset = g_expected.dataset;  // a generated scene
+  expectInstancesFound(dataset, checkedTruth(dataset), reported);
+
+  with_probabilities.request.probabilities.resize(1);
+  ASSERT_TRUE(ros::service::call(name, with_probabilities));
+  EXPECT_FALSE(with_probabilities.response.success);
+  EXPECT_NE(with_probabilities.response.message.find(
+                "probabilities were given, but input.probability takes labels, masks or boxes"),
+            std::string::npos)
+      << with_probabilities.response.message;
+}
+
 }  // namespace
 }  // namespace stocs_ros::test
 
@@ -106,6 +171,8 @@ int main(int argc, char** argv) {
   pnh.param("scene", g_expected.scene, g_expected.scene);
   pnh.param("image", g_expected.image, g_expected.image);
   pnh.param("max_adds", g_expected.max_adds, g_expected.max_adds);
+  pnh.param("segmentation", g_expected.segmentation, g_expected.segmentation);
+  pnh.param("cloud_topic", g_expected.cloud_topic, g_expected.cloud_topic);
   ros::AsyncSpinner spinner(2);
   spinner.start();
   return RUN_ALL_TESTS();

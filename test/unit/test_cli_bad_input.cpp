@@ -1,6 +1,7 @@
 // The `stocs` tool on bad files (rows of docs/bad_inputs.md): bad models and unit
 // mistakes exit 2 with the message naming the file; a corrupt or unwritable cache never stops a
-// run; an out-of-range probability map in a dataset exits 2 naming the file and pixel.
+// run; an out-of-range probability map in a dataset exits 2 naming the file and pixel; bad
+// segmentation inputs (--prob masks, boxes:FILE) exit 2 naming the file.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -102,6 +103,31 @@ TEST(CliBadInput, AnOutOfRangeProbabilityMapExitsTwoNamingThePixel) {
                                      "[0, 1] (raw value / 10000)"),
             std::string::npos)
       << out;
+}
+
+TEST(CliBadInput, BadSegmentationInputsExitTwoNamingTheFile) {
+  const auto root = test::scratchDir("cli_bad_segmentation");
+  test::writeSyntheticBopDataset(root / "data");
+  const std::string run = "estimate --no-cache --dataset " + (root / "data").string() + " --out " +
+                          (root / "x.csv").string() + " --prob ";
+  std::string out;
+  // Without mask_visib/ the masks are rendered from the model: the box is found.
+  EXPECT_EQ(stocs(run + "masks", out), 0) << out;
+  EXPECT_NE(out.find("1 of 1 objects found"), std::string::npos) << out;
+  const auto boxes = root / "boxes.json";
+  for (const auto& [text, problem] : std::vector<std::pair<std::string, std::string>>{
+           {"[{\"scene_id\": 0}", "invalid JSON"},
+           {R"([{"scene_id": 0, "image_id": 0, "category_id": 7, "bbox": [1, 1, 5, 5],
+                "score": 1}])",
+            "scene 0 image 0 has a box of category_id 7, which is not an object of the dataset"}}) {
+    std::ofstream(boxes) << text;
+    EXPECT_EQ(stocs(run + "boxes:" + boxes.string(), out), 2) << out;
+    EXPECT_NE(out.find(boxes.string() + ": " + problem), std::string::npos) << out;
+  }
+  // A mask_visib/ folder without the instance's mask is an error, not a reason to render.
+  std::filesystem::create_directories(root / "data" / "test" / "000000" / "mask_visib");
+  EXPECT_EQ(stocs(run + "masks", out), 2) << out;
+  EXPECT_NE(out.find("mask_visib/000000_000000.png: no such file"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -11,7 +11,6 @@
 #include "stocs/io/mesh_io.h"
 #include "stocs/sim/ground_truth_masks.h"
 #include "stocs/sim/probability_source.h"
-#include "stocs/sim/synthetic_dataset.h"
 #include "stocs/util/error.h"
 #include "test_support.h"
 
@@ -23,11 +22,7 @@ class ProbabilitySourceTest : public ::testing::Test {
  protected:
   void SetUp() override {
     root_ = test::scratchDir("data");
-    SyntheticDatasetParams params;
-    params.layout.objects = 3;
-    params.layout.distractors = 1;
-    params.seed = 11;
-    writeSyntheticDataset(root_, params);
+    test::writeThreeObjectScene(root_);
     dataset_ = std::make_unique<BopDataset>(root_);
     gt_ = dataset_->sceneGroundTruth(0).at(0);
     ASSERT_EQ(gt_.size(), 3u);

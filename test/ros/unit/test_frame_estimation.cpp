@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 
+#include <opencv2/imgproc.hpp>
 #include "stocs/util/error.h"
 #include "stocs_ros/bop_frame.h"
 #include "stocs_ros/cloud_conversion.h"
@@ -136,6 +137,89 @@ TEST_F(FrameEstimation, DepthImageAndMultichannelImageGiveTheKnownPose) {
   job.frame.boundary = image("mono8", cv::Mat(frame_->depth.size(), CV_8UC1, cv::Scalar(255)));
   job.objects = {0};
   expectFoundNearTruth(estimateFrame(job, *s));
+}
+
+/// The box's mask in the generated frame (its map above one half).
+cv::Mat boxMask(const BopFrame& frame) {
+  return frame.probabilities[0] > 0.5f;
+}
+
+TEST_F(FrameEstimation, LabelsMasksAndBoxesGiveTheKnownPose) {
+  const cv::Mat mask = boxMask(*frame_);
+  // Labels: class 3 is the box (input.labels), 0 the background.
+  EstimationJob job = cloudJob();
+  job.frame.probabilities.clear();
+  cv::Mat labels(mask.size(), CV_8UC1, cv::Scalar(0));
+  labels.setTo(3, mask);
+  job.frame.segmentation.labels = image("mono8", labels);
+  expectFoundNearTruth(estimateFrame(
+      job, *setup("input: {probability: labels, labels: [\"-\", \"-\", \"-\", box]}\n")));
+
+  // Masks: class 1 (the box's id), and a mask of another class over the rest of the image.
+  auto masks = boost::make_shared<InstanceMaskArray>();
+  masks->masks.resize(2);
+  masks->masks[0].mask = *image("mono8", mask);
+  masks->masks[0].class_id = 1;
+  masks->masks[0].score = 0.9f;
+  masks->masks[1].mask = *image("mono8", ~mask);
+  masks->masks[1].class_id = 2;
+  masks->masks[1].score = 1.0f;
+  job.frame.segmentation = {};
+  job.frame.segmentation.masks = masks;
+  expectFoundNearTruth(estimateFrame(job, *setup("input: {probability: masks}\n")));
+
+  // Boxes: the mask's bounding box, loosened by 10 pixels.
+  const cv::Rect r = cv::boundingRect(mask);
+  auto boxes = boost::make_shared<Detection2DArray>();
+  boxes->detections.resize(1);
+  Detection2D& d = boxes->detections[0];
+  d.class_id = 1;
+  d.score = 0.8f;
+  d.x = r.x - 10;
+  d.y = r.y - 10;
+  d.width = r.width + 20;
+  d.height = r.height + 20;
+  job.frame.segmentation = {};
+  job.frame.segmentation.boxes = boxes;
+  expectFoundNearTruth(estimateFrame(job, *setup("input: {probability: boxes}\n")));
+}
+
+TEST_F(FrameEstimation, BadSegmentationMessagesAreNamed) {
+  EstimationJob job = cloudJob();
+  job.frame.probabilities.clear();
+  const auto labels_setup = setup("input: {probability: labels, label_confidence: true}\n");
+  EXPECT_EQ(errorOf(job, *labels_setup), "label image: none given for input.probability");
+  job.frame.segmentation.labels = image("32FC1", frame_->probabilities[0]);
+  EXPECT_NE(errorOf(job, *labels_setup).find("label image: label image has OpenCV type 5"),
+            std::string::npos);
+  job.frame.segmentation.labels = image("mono8", cv::Mat(frame_->depth.size(), CV_8UC1));
+  job.frame.segmentation.label_confidence = image("mono8", cv::Mat(10, 10, CV_8UC1));
+  EXPECT_EQ(errorOf(job, *labels_setup),
+            "label image: confidence image is 10x10 but the label image is 320x240");
+
+  job.frame.segmentation = {};
+  auto masks = boost::make_shared<InstanceMaskArray>();
+  masks->masks.resize(1);
+  masks->masks[0].mask = *image("mono8", cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
+  masks->masks[0].class_id = 1;
+  masks->masks[0].score = 1;
+  job.frame.segmentation.masks = masks;
+  const auto masks_setup = setup("input: {probability: masks}\n");
+  EXPECT_EQ(errorOf(job, *masks_setup),
+            "instance masks: mask 0 (class 1) is 10x10 but the depth image is 320x240");
+  masks->masks[0].mask = *image("rgb8", cv::Mat(frame_->depth.size(), CV_8UC3));
+  EXPECT_NE(errorOf(job, *masks_setup).find("instance masks: mask 0 (class 1): encoding 'rgb8'"),
+            std::string::npos);
+
+  job.frame.segmentation = {};
+  auto boxes = boost::make_shared<Detection2DArray>();
+  boxes->detections.resize(1);
+  boxes->detections[0].width = std::numeric_limits<float>::quiet_NaN();
+  boxes->detections[0].height = 5;
+  boxes->detections[0].score = 1;
+  job.frame.segmentation.boxes = boxes;
+  EXPECT_EQ(errorOf(job, *setup("input: {probability: boxes}\n")).substr(0, 30),
+            "boxes: box 0 (class 0) is x 0 ");
 }
 
 TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {

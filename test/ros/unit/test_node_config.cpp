@@ -162,6 +162,22 @@ TEST(NodeConfig, DatasetPathsResolveInsideTheGivenDataset) {
   EXPECT_EQ(c.model_cache, "/data/ycbv-0000/../cache");
 }
 
+TEST(NodeConfig, ClassIdsComeFromInputLabelsOrTheObjectIds) {
+  const std::string objects =
+      "objects:\n  - {name: a, id: 7, model: a.ply}\n  - {name: b, model: b.ply}\n";
+  const NodeConfig by_id = loadNodeConfig(writeConfig(objects + "input: {probability: masks}\n"));
+  EXPECT_EQ(by_id.classOf(0), 7);
+  EXPECT_EQ(by_id.classOf(1), 2);
+  const NodeConfig by_list =
+      loadNodeConfig(writeConfig(
+          objects + "input: {probability: labels, labels: [\"-\", b, a], label_confidence: true,\n"
+                    "        segmentation: {mask_border_px: 5}}\n"));
+  EXPECT_EQ(by_list.classOf(0), 2);
+  EXPECT_EQ(by_list.classOf(1), 1);
+  EXPECT_TRUE(by_list.input.label_confidence);
+  EXPECT_EQ(by_list.input.segmentation.mask_border_px, 5.0f);
+}
+
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   const std::string box = kBox;
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -202,6 +218,18 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
       {box + "input: {probability: multichannel, channels: [\"-\"]}\n",
        "object 'box' has no channel in input.channels"},
       {box + "input: {channels: [box]}\n", "input.channels is only used with"},
+      {box + "input: {probability: masks, labels: [\"-\", cup]}\n",
+       "input.labels names 'cup', which is not a configured object (box)"},
+      {box + "input: {probability: boxes, labels: [\"-\", \"-\"]}\n",
+       "object 'box' has no class in input.labels"},
+      {box + "input: {labels: [box]}\n", "input.labels is only used with"},
+      {box + "input: {probability: masks, label_confidence: true}\n",
+       "input.label_confidence is only used with input.probability: labels"},
+      {box + "input: {probability: contours}\n",
+       "input.probability: 'contours' is not one of per_object, multichannel, labels, masks, "
+       "boxes"},
+      {box + "input: {segmentation: {box_core: 1}}\n",
+       "input.segmentation.box_core: 1 is outside [0, 1)"},
       {box + "output: {tf: maybe}\n", "output.tf: expected true or false, got 'maybe'"},
       {"objects:\n  - model: box.ply\n", "objects[0].name '' must start with a letter"},
       {"objects:\n  - name: my cat\n    model: cat.ply\n", "objects[0].name 'my cat'"},
