@@ -1,6 +1,42 @@
 #include "stocs/tracking/frame_tracker.h"
 
+#include <omp.h>
+
+#include <algorithm>
+#include <exception>
+
+#include "stocs/util/cpu_time.h"
+
 namespace stocs {
+namespace {
+
+/// Follows the tracks of every object, objects in parallel (each follows on one thread: a box is
+/// too small to share); the CPU time each took. Errors are thrown after all have run, the first
+/// object's first, named.
+std::vector<double> followAll(const std::vector<ObjectTracker*>& trackers,
+                              const std::vector<FrameObject>& objects,
+                              const std::vector<ObjectInput>& inputs,
+                              const std::vector<char>& may_redetect, double dt, int threads) {
+  const int n = static_cast<int>(trackers.size());
+  std::vector<double> cpu(trackers.size(), 0.0);
+  std::vector<std::exception_ptr> errors(trackers.size());
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(1, std::min(threads, n)))
+  for (int k = 0; k < n; ++k) {
+    try {
+      const double start = threadCpuSeconds();
+      trackers[k]->follow(inputs[k], dt, may_redetect[k]);
+      cpu[k] = threadCpuSeconds() - start;
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    if (errors[k]) forObject(objects[k].name, [&] { std::rethrow_exception(errors[k]); });
+  }
+  return cpu;
+}
+
+}  // namespace
 
 FrameTracker::FrameTracker(const TrackingParams& params) : params_(params) {
   params_.validate();
@@ -23,28 +59,35 @@ FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObj
   out.counts.reset = timeJumped(stamp, previous_input);
   if (out.counts.reset) reset();
   const double dt = last_stamp_ ? stamp - *last_stamp_ : 0.0;
-  // estimateFrame checks each object's input and calls the estimator for the objects in order.
-  std::vector<ObjectTracking> tracking;
-  auto next = objects.begin();
+  const CameraIntrinsics camera = frameCamera(frame);
+  std::vector<ObjectInput> inputs;
+  std::vector<ObjectTracker*> trackers;
+  std::vector<char> may_redetect;
   bool redetection_taken = false;  // one scheduled full detection a frame
-  const ObjectEstimator step = [&](const ObjectInput& in) {
-    ObjectTracker& tracker = objects_.try_emplace((next++)->name, params_).first->second;
-    const bool may_redetect = !redetection_taken;
-    redetection_taken = redetection_taken || tracker.redetectionDue();
-    tracking.push_back(tracker.update(in, dt, may_redetect));
-    return tracking.back().estimate;
-  };
-  std::vector<ObjectResult> results = estimateFrame(frame, objects, params, step);
+  for (const FrameObject& object : objects) {
+    forObject(object.name, [&] { inputs.push_back(objectInput(frame, camera, object, params)); });
+    trackers.push_back(&objects_.try_emplace(object.name, params_).first->second);
+    may_redetect.push_back(!redetection_taken);
+    redetection_taken = redetection_taken || trackers.back()->redetectionDue();
+  }
+  const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
+  const std::vector<double> follow_cpu =
+      followAll(trackers, objects, inputs, may_redetect, dt, threads);
   last_stamp_ = stamp;
-  for (size_t k = 0; k < results.size(); ++k) {
-    ObjectTracking& t = tracking[k];
+  // Searches and detections one object after the other, each with every thread.
+  for (size_t k = 0; k < objects.size(); ++k) {
+    const double cpu_start = processCpuSeconds();
+    ObjectTracking t;
+    forObject(objects[k].name, [&] { t = trackers[k]->conclude(); });
     for (TrackState s : t.states) {
       out.counts.tracked += s == TrackState::kTracked;
       out.counts.redetected += s == TrackState::kRedetected;
       out.counts.lost += s == TrackState::kLost;
     }
     out.counts.detections += t.detected;
-    out.objects.push_back({std::move(results[k]), std::move(t.states), t.detected});
+    ObjectResult result{objects[k].name, std::move(t.estimate),
+                        follow_cpu[k] + processCpuSeconds() - cpu_start};
+    out.objects.push_back({std::move(result), std::move(t.states), t.detected});
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <stdexcept>
 
 #include "stocs/estimation/pipeline.h"
 #include "stocs/estimation/pose_proximity.h"
@@ -51,15 +52,22 @@ class ObjectTracker::Step {
         settled_(tracker.tracks_.size(), 0),
         attempts_(tracker.tracks_.size()) {}
 
-  ObjectTracking run() {
+  /// Follows the live tracks.
+  void follow() {
+    const auto start = Clock::now();
+    failed_ = followLiveTracks();
+    seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  /// Searches and detects where following failed (or the schedule asks), and reports the frame.
+  ObjectTracking conclude() {
     const auto start = Clock::now();
     ObjectTracking out;
     const TrackingParams& params = tracker_.params_;
     const bool scheduled = may_redetect_ && tracker_.redetectionDue();
-    const bool failed = followLiveTracks();
     ++tracker_.frames_since_detection_;
     std::optional<PoseEstimate> search;  // the last one run: local, then full
-    if (failed && params.local_search && follower_) {
+    if (failed_ && params.local_search && follower_) {
       search = follower_->search();
       assign(acceptedPoses(*search));
       out.searched = true;
@@ -73,7 +81,7 @@ class ObjectTracker::Step {
     }
     out.estimate = search ? std::move(*search) : PoseEstimate{};
     report(out);
-    out.estimate.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    out.estimate.seconds = seconds_ + std::chrono::duration<double>(Clock::now() - start).count();
     return out;
   }
 
@@ -219,14 +227,32 @@ class ObjectTracker::Step {
   std::vector<char> settled_;
   std::vector<std::optional<InstancePose>> attempts_;  // failed follows, by track
   std::optional<SegmentFollower> follower_;
+  bool failed_ = false;  // a live track was not accepted
+  double seconds_ = 0;   // of follow()
 };
 
 ObjectTracker::ObjectTracker(const TrackingParams& params) : params_(params) {
   params_.validate();
 }
 
+ObjectTracker::~ObjectTracker() = default;
+ObjectTracker::ObjectTracker(ObjectTracker&&) noexcept = default;
+ObjectTracker& ObjectTracker::operator=(ObjectTracker&&) noexcept = default;
+
 ObjectTracking ObjectTracker::update(const ObjectInput& in, double dt, bool may_redetect) {
-  return Step(*this, in, dt, may_redetect).run();
+  follow(in, dt, may_redetect);
+  return conclude();
+}
+
+void ObjectTracker::follow(const ObjectInput& in, double dt, bool may_redetect) {
+  step_ = std::make_unique<Step>(*this, in, dt, may_redetect);
+  step_->follow();
+}
+
+ObjectTracking ObjectTracker::conclude() {
+  if (!step_) throw std::logic_error("ObjectTracker::conclude without follow");
+  const std::unique_ptr<Step> step = std::move(step_);
+  return step->conclude();
 }
 
 bool ObjectTracker::redetectionDue() const {

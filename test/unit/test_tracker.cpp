@@ -254,6 +254,48 @@ TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
   EXPECT_EQ(second, (std::vector<bool>{true, false, false, true, false}));
 }
 
+/// The poses of every object over three frames of a moving block, `threads` following at once.
+std::vector<Eigen::Matrix4f> posesOverFrames(FrameTracker& tracker,
+                                             const std::vector<FrameObject>& objects,
+                                             PipelineParams params, const Frame (&frames)[3],
+                                             int threads) {
+  params.stocs.threads = threads;
+  std::vector<Eigen::Matrix4f> poses;
+  for (int k = 0; k < 3; ++k) {
+    for (const TrackedObject& o :
+         tracker.track(frames[k], objects, params, k * kFramePeriod).objects) {
+      poses.push_back(o.result.estimate.instances.at(0).pose.matrix());
+    }
+  }
+  return poses;
+}
+
+TEST_F(TrackerTest, ObjectsFollowedInParallelMatchThoseFollowedInTurn) {
+  Frame frames[3] = {frameAt(truth_), frameAt(moved(truth_, 4, 1)), frameAt(moved(truth_, 8, 2))};
+  std::vector<FrameObject> objects;  // four objects of the same block: their poses must agree
+  for (const char* name : {"block", "b", "c", "d"}) objects.push_back({name, model_.get()});
+  for (Frame& f : frames) {
+    for (const FrameObject& o : objects) f.probabilities[o.name] = f.probabilities.at("block");
+  }
+  FrameTracker in_turn{TrackingParams{}}, in_parallel{TrackingParams{}};
+  const auto expected = posesOverFrames(in_turn, objects, estimator_.params(), frames, 1);
+  const auto actual = posesOverFrames(in_parallel, objects, estimator_.params(), frames, 2);
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+    EXPECT_TRUE(actual[k].isApprox(expected[k], 1e-6f)) << k;
+}
+
+TEST_F(TrackerTest, AnObjectWithoutAMapIsNamed) {
+  FrameTracker tracker{TrackingParams{}};
+  const Frame frame = frameAt(truth_);
+  try {
+    tracker.track(frame, {{"block", model_.get()}, {"cup", model_.get()}}, estimator_.params(), 0);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("object 'cup'"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(TrackerTest, BadParametersAreNamed) {
   TrackingParams params;
   params.max_gap = 0;

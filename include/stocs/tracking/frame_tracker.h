@@ -42,9 +42,10 @@ class FrameTracker {
   /// The objects of `frame`, taken at `stamp` (seconds), as estimateFrame takes them (same
   /// errors); each keeps its tracks by name. `previous_input`, where the caller skipped input
   /// frames (a node that keeps up by taking the newest frame), is the stamp of the input frame
-  /// before this one: the gap test measures the input's gap, not the time the tracker took. Of the
-  /// objects whose scheduled full detection is due, the first in `objects` runs it; the others wait
-  /// for later frames.
+  /// before this one: the gap test measures the input's gap, not the time the tracker took. The
+  /// objects follow their tracks in parallel (StocsParams::threads, 0: every core), then search and
+  /// detect where needed one after the other. Of the objects whose scheduled full detection is
+  /// due, the first in `objects` runs it; the others wait for later frames.
   FrameTracking track(const Frame& frame, const std::vector<FrameObject>& objects,
                       const PipelineParams& params, double stamp,
                       std::optional<double> previous_input = std::nullopt);
