@@ -66,6 +66,7 @@ stocs_add_rostest_node(test_scene_poses ${PROJECT_SOURCE_DIR}/test/ros/test_scen
 stocs_add_rostest_node(test_soak ${PROJECT_SOURCE_DIR}/test/ros/test_soak.cpp)
 stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test_rejected_objects.cpp)
 stocs_add_rostest_node(test_sequence_playback ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_playback.cpp)
+stocs_add_rostest_node(test_sequence_tracking ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_tracking.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
@@ -83,6 +84,8 @@ add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
 add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher)
 add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_sequence_playback scene_publisher stocs_ros_test_data)
+add_rostest(test/ros/sequence_tracking.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_sequence_tracking ${STOCS_ROS_TEST_DEPENDS})
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
 add_rostest(test/ros/soak.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_soak ${STOCS_ROS_TEST_DEPENDS})
