@@ -164,7 +164,8 @@ class ObjectTracker::Step {
   }
 
   /// Hands the accepted poses of a search or detection (best first) to the tracks: each continues
-  /// its nearest track (a settled one keeps its tracked pose), the others go where placeFor says.
+  /// its nearest track (a settled one keeps its tracked pose unless the detection's confidence is
+  /// higher), the others go where placeFor says.
   void assign(const std::vector<InstancePose>& found) {
     std::vector<char> claimed(tracker_.tracks_.size(), 0);
     std::vector<const InstancePose*> unmatched;
@@ -175,7 +176,9 @@ class ObjectTracker::Step {
         continue;
       }
       claimed[k] = 1;
-      if (!settled_[k]) take(k, pose);
+      // A settled track keeps its tracked pose unless the confidence prefers the detection: the
+      // same place turned otherwise (a mug's handle) is no other track, but may be the right pose.
+      if (!settled_[k] || pose.confidence > tracker_.tracks_[k].pose.confidence) take(k, pose);
     }
     for (const InstancePose* pose : unmatched) {
       const int k = placeFor(*pose, claimed);
