@@ -3,7 +3,7 @@
 two runs on it: tracking (stocs estimate --track true) and detecting every frame.
 
   tracking_metrics.py --scene DIR --track-results R.csv --track-targets T.csv
-                      --track-objects O.csv --detect-targets T2.csv [--frames-out FRAMES.dat]
+                      --track-objects O.csv [--detect-targets T2.csv] [--frames-out FRAMES.dat]
 
 DIR: the scene's folder (scene_events.json, scene_gt.json: which objects each frame holds).
 R.csv: the tracking run's BOP results (`time`: the frame's wall time, depth-to-cloud conversion
@@ -104,14 +104,13 @@ def main():
     p.add_argument("--track-results", required=True)
     p.add_argument("--track-targets", required=True)
     p.add_argument("--track-objects", required=True)
-    p.add_argument("--detect-targets", required=True)
+    p.add_argument("--detect-targets", help="without it, no comparison with detection")
     p.add_argument("--frames-out")
     a = p.parse_args()
     events = json.load(open(f"{a.scene}/scene_events.json"))
     truth = json.load(open(f"{a.scene}/scene_gt.json"))
     frames = len(events["stamps"])
     track = read_targets(a.track_targets, truth)
-    detect = read_targets(a.detect_targets, truth)
     wall = frame_walls(a.track_results)
     cpu, followed = frame_cpus(a.track_objects)
     followed_frames = [im for im in cpu if followed[im]]
@@ -122,10 +121,14 @@ def main():
     print_times("wall_all_followed", wall, followed_frames)
     print_times("cpu_all_followed", cpu, followed_frames)
     print(f"success_tracking {100 * success(track):.1f}")
-    print(f"success_detection {100 * success(detect):.1f}")
+    if a.detect_targets:
+        detect = read_targets(a.detect_targets, truth)
+        print(f"success_detection {100 * success(detect):.1f}")
     first, last = set(range(50)), set(range(frames - 50, frames))
     print(f"drift_first50_median_adds_pct {100 * median_error(track, first):.2f}")
     print(f"drift_last50_median_adds_pct {100 * median_error(track, last):.2f}")
+    last = [t for (im, _), t in track.items() if im == frames - 1 and t[0]]
+    print(f"last_frame_correct {sum(t[3] for t in last)} of {len(last)}")
     for event in events["events"]:
         if event["kind"] != "removal":
             continue
