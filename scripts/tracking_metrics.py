@@ -10,7 +10,7 @@ R.csv: the tracking run's BOP results (`time`: the frame's wall time, depth-to-c
 and every object, which follow their tracks in parallel); T.csv, T2.csv: `stocs eval
 --targets-csv` (one row per target with its ADD-S); O.csv: `stocs estimate --per-object` of the
 tracking run (each object's CPU seconds and hypotheses). Prints one
-`key value` line per figure; --frames-out writes per frame: frame, time (ms), median and largest
+`key value` line per figure; --frames-out writes per frame: frame, wall and CPU time (ms), median and largest
 ADD-S (% of the diameter) of the present objects (a missing pose counts as 100%), for the plot.
 """
 import argparse
@@ -79,22 +79,24 @@ def median_error(targets, frames):
 
 
 def removal_and_return(targets, event, frames):
-    """Frames after the object left that still had a pose (the last posed frame of the removal,
-    counting its first frame as 1; 0: none), and the frame of the return, counting the first frame
-    back as 1, at which the object was first posed correctly (inf: never)."""
+    """Of the removal: the frames from its first with a pose still (the track not yet lost), the
+    later frames of it with a pose again (a detection elsewhere: the map's confusion), and the
+    frame of the return, counting the first frame back as 1, at which the object was first posed
+    correctly (inf: never)."""
     obj, first, last = event["obj_id"], event["first_frame"], event["last_frame"]
-    posed = [im for im in range(first, last + 1) if targets[(im, obj)][1]]
-    stale = posed[-1] - first + 1 if posed else 0
+    posed = [targets[(im, obj)][1] for im in range(first, last + 1)]
+    stale = posed.index(False) if False in posed else len(posed)
     back = [im for im in range(last + 1, frames) if targets[(im, obj)][3]]
-    return stale, back[0] - last if back else math.inf
+    return stale, sum(posed[stale:]), back[0] - last if back else math.inf
 
 
-def per_frame(targets, seconds, frames):
-    """frame, ms, median and largest ADD-S in % of the diameter (missing: 100)."""
+def per_frame(targets, wall, cpu, frames):
+    """frame, wall and CPU ms, median and largest ADD-S in % of the diameter (missing: 100)."""
     rows = []
     for im in range(frames):
         errors = [min(100.0, 100 * t[2]) for (i, _), t in targets.items() if i == im and t[0]]
-        rows.append((im, 1000 * seconds.get(im, math.nan), statistics.median(errors), max(errors)))
+        rows.append((im, 1000 * wall.get(im, math.nan), 1000 * cpu.get(im, math.nan),
+                     statistics.median(errors), max(errors)))
     return rows
 
 
@@ -121,8 +123,8 @@ def main():
     print_times("wall_all_followed", wall, followed_frames)
     print_times("cpu_all_followed", cpu, followed_frames)
     print(f"success_tracking {100 * success(track):.1f}")
-    if a.detect_targets:
-        detect = read_targets(a.detect_targets, truth)
+    detect = read_targets(a.detect_targets, truth) if a.detect_targets else None
+    if detect:
         print(f"success_detection {100 * success(detect):.1f}")
     first, last = set(range(50)), set(range(frames - 50, frames))
     print(f"drift_first50_median_adds_pct {100 * median_error(track, first):.2f}")
@@ -132,14 +134,16 @@ def main():
     for event in events["events"]:
         if event["kind"] != "removal":
             continue
-        stale, back = removal_and_return(track, event, frames)
-        print(f"removal_obj {event['obj_id']} frames_posed_after_leaving {stale} "
-              f"return_correct_at_frame {back}")
+        runs = [("tracking", track)] + ([("detection", detect)] if a.detect_targets else [])
+        for name, targets in runs:
+            stale, false_poses, back = removal_and_return(targets, event, frames)
+            print(f"removal_{name} obj {event['obj_id']}: posed in the first {stale} frames out, "
+                  f"{false_poses} later frames out posed elsewhere, correct at frame {back} back")
     if a.frames_out:
         with open(a.frames_out, "w") as f:
-            f.write("# frame time_ms median_adds_pct max_adds_pct\n")
-            for row in per_frame(track, wall, frames):
-                f.write("{} {:.3f} {:.2f} {:.2f}\n".format(*row))
+            f.write("# frame wall_ms cpu_ms median_adds_pct max_adds_pct\n")
+            for row in per_frame(track, wall, cpu, frames):
+                f.write("{} {:.3f} {:.3f} {:.2f} {:.2f}\n".format(*row))
 
 
 if __name__ == "__main__":
