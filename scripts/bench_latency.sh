@@ -8,6 +8,7 @@
 # in one manager (passed as shared pointers).
 #   scripts/bench_latency.sh [FRAMES [RATE [BASES [CONSENSUS]]]]   (defaults: 60 frames at 5 Hz,
 #     the configuration's bases and consensus_bases, i.e. 100 and 8; CONSENSUS 0 runs every base)
+# STOCS_LATENCY_TRACKING=true runs the node with tracking.enabled (issue 30).
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
@@ -46,6 +47,9 @@ cpu_times() {
   read -r _ user nice system _ _ irq softirq steal _ < /proc/stat  # idle and iowait skipped
   echo "$((user + nice + system + irq + softirq)) $steal"
 }
+if [ "${STOCS_LATENCY_TRACKING:-false}" = true ]; then
+  printf 'tracking:\n  enabled: true\n' >> "$out/config.yaml"
+fi
 for mode in nodes nodelets; do
   read -r busy0 steal0 <<< "$(cpu_times)"
   nodelet=false
