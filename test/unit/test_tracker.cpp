@@ -169,6 +169,26 @@ TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
   EXPECT_GT(poseAt(checked).confidence, poseAt(held).confidence);
 }
 
+TEST_F(TrackerTest, ScheduledDetectionTurnsATrackHeldAtTheRightPlaceTheWrongWay) {
+  // Between two frames the block turns about its centre: following from the last pose may settle
+  // turned the wrong way at the right place; the scheduled detection there, which the confidence
+  // prefers, replaces it.
+  const Eigen::Vector3f centre = truth_ * PoseProximity(model_->model).centre();
+  Eigen::Isometry3f turned = truth_;
+  turned.linear() =
+      Eigen::AngleAxisf(0.5f * static_cast<float>(M_PI), truth_.linear().col(2)) * truth_.linear();
+  turned.translation() = centre - turned.linear() * PoseProximity(model_->model).centre();
+  TrackingParams params;
+  params.redetect_every = 1;
+  FrameTracker tracker(params);
+  track(tracker, frameAt(truth_), 0.0);
+  const FrameTracking t = track(tracker, frameAt(turned), kFramePeriod);
+  const InstancePose& pose = t.objects.at(0).result.estimate.instances.at(0);
+  ASSERT_TRUE(pose.accepted);
+  EXPECT_LT(adds(pose.pose, turned), 0.05 * model_->model.diameter)
+      << toString(t.objects[0].states[0]);
+}
+
 TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
   FrameTracker tracker{TrackingParams{}};
   track(tracker, frameAt(truth_), 0.0);
