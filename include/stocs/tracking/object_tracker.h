@@ -72,6 +72,19 @@ class ObjectTracker {
   /// frame.
   bool redetectionDue() const;
 
+  /// For a caller that detects in the background (StreamTracker): follows the live tracks and
+  /// reports the frame without searching or detecting; a track that is not accepted is lost until
+  /// a detection merged with merge() finds it again.
+  ObjectTracking followOnly(const ObjectInput& in, double dt);
+  /// Whether an instance is missing: no track yet, or a lost one (detection keeps trying).
+  bool untracked() const;
+  /// Hands the accepted poses of a full detection (of this or an earlier frame) to the tracks as
+  /// a frame's detection does, the tracks that are not lost counting as settled (a detection the
+  /// confidence prefers replaces one), and restarts the schedule; the indices of the tracks that
+  /// took a pose. `max_instances`: StocsParams::instances.
+  std::vector<int> merge(const PoseEstimate& detection, const PreparedModel& model,
+                         int max_instances);
+
   const std::vector<Track>& tracks() const { return tracks_; }
 
  private:
