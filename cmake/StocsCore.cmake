@@ -46,7 +46,7 @@ target_compile_definitions(stocs_io PRIVATE ${PCL_DEFINITIONS})
 stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
 target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
 stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
-stocs_add_module(tracking PUBLIC stocs_estimation)
+stocs_add_module(tracking PUBLIC stocs_estimation PRIVATE OpenMP::OpenMP_CXX)
 stocs_add_module(segmentation PUBLIC stocs_util opencv_core PRIVATE opencv_dnn opencv_imgproc)
 stocs_add_module(sim PUBLIC stocs_io
   PRIVATE stocs_segmentation opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)

@@ -29,6 +29,7 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synthetic.yaml
 # the writer above, which empties the whole folder first: side by side (make -j2) it would delete
 # the scene's models/ while the CLI writes them.
 add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
+  COMMAND ${CMAKE_COMMAND} -E remove_directory ${STOCS_ROS_TEST_DATA}/synth_scene
   COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/synth_scene --objects 6 --distractors 2 --seed 1
     --quiet
   DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
@@ -69,6 +70,7 @@ stocs_add_rostest_node(test_soak ${PROJECT_SOURCE_DIR}/test/ros/test_soak.cpp)
 stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test_rejected_objects.cpp)
 stocs_add_rostest_node(test_sequence_playback ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_playback.cpp)
 stocs_add_rostest_node(test_segmentation_node ${PROJECT_SOURCE_DIR}/test/ros/test_segmentation_node.cpp)
+stocs_add_rostest_node(test_sequence_tracking ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_tracking.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
@@ -96,6 +98,8 @@ add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node sce
   segmentation_node)
 add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_sequence_playback scene_publisher stocs_ros_test_data)
+add_rostest(test/ros/sequence_tracking.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_sequence_tracking ${STOCS_ROS_TEST_DEPENDS})
 # The short soak (25 s); the 5-minute run is documented in docs/reliability.md.
 add_rostest(test/ros/soak.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_soak ${STOCS_ROS_TEST_DEPENDS})

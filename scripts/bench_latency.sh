@@ -5,9 +5,12 @@
 # the node's estimates (~objects, published right after TF), p50 and p95, with the share of CPU time
 # the hypervisor stole during the run (it stretches every latency on a shared VM). It runs twice:
 # publisher and estimator as separate nodes (clouds and images serialized over TCP) and as nodelets
-# in one manager (passed as shared pointers).
+# in one manager (passed as shared pointers). The player decodes the scene's frames before it
+# starts (preload), so that it sustains the rate; the node's frame counts say how many frames it
+# dropped.
 #   scripts/bench_latency.sh [FRAMES [RATE [BASES [CONSENSUS]]]]   (defaults: 60 frames at 5 Hz,
 #     the configuration's bases and consensus_bases, i.e. 100 and 8; CONSENSUS 0 runs every base)
+# STOCS_LATENCY_TRACKING=true runs the node with tracking.enabled (issue 30).
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
@@ -46,6 +49,9 @@ cpu_times() {
   read -r _ user nice system _ _ irq softirq steal _ < /proc/stat  # idle and iowait skipped
   echo "$((user + nice + system + irq + softirq)) $steal"
 }
+if [ "${STOCS_LATENCY_TRACKING:-false}" = true ]; then
+  printf 'tracking:\n  enabled: true\n' >> "$out/config.yaml"
+fi
 for mode in nodes nodelets; do
   read -r busy0 steal0 <<< "$(cpu_times)"
   nodelet=false
@@ -54,11 +60,14 @@ for mode in nodes nodelets; do
   export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$out/ros-$mode"
   roslaunch -p "$port" stocs_ros demo.launch dataset:="$out/scene" config:="$out/config.yaml" \
     results:="$out/results-$mode.csv" frames:="$frames" rate:="$rate" timeout:=600 \
-    nodelet:="$nodelet" > "$out/roslaunch-$mode.log" 2>&1 || true
+    nodelet:="$nodelet" preload:=true > "$out/roslaunch-$mode.log" 2>&1 || true
   line=$(grep -E "^latency " "$out/roslaunch-$mode.log") ||
     { echo "bench_latency: no result as $mode (log: $out/roslaunch-$mode.log)" >&2; exit 1; }
   read -r busy1 steal1 <<< "$(cpu_times)"
   stolen=$((steal1 - steal0))
   echo "$mode: $line; steal $((100 * stolen / (busy1 - busy0 + stolen + 1)))% of the busy time"
+  # Frames the node received, estimated and dropped (replaced by a newer one while it was busy).
+  grep -oE "at shutdown: [0-9]+ frames matched: [0-9]+ estimated, [0-9]+ replaced" \
+    "$out/roslaunch-$mode.log" | sed "s/^at shutdown: /  node: /" || true
 done
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"

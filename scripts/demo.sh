@@ -4,19 +4,26 @@
 # with roslaunch (scene publisher -> stocs_node -> demo recorder), prints per object the pose,
 # score and latency of each frame and the ADD-S error of the last against the ground truth, writes
 # build/demo/overlay.png, and exits 0 only if every object was found (ADD-S < 10% of its diameter).
-#   scripts/demo.sh [--rviz] [--network]
-#     --rviz: also open rviz, on a machine with a display; the scene plays until rviz is closed
+#   scripts/demo.sh [--rviz] [--network] [--track]
+#     --rviz: also open rviz, on a machine with a display; the scene plays until rviz is closed.
 #     --network: the maps come from the package's segmentation network (segmentation_node on the
 #                colour image; models/segmenter.onnx, never trained on this scene) instead of prob/
+#     --track: then also track a generated 90-frame sequence (build/demo/sequence: an object
+#       pushed, one lifted, one removed and put back, one occluded) with `stocs estimate --track
+#       true`, and print the tracking counts, the share of correct poses and, for the removed
+#       object, the frames posed after it left and the frame it was found again (about a minute
+#       more); the exit code also requires every object correct in the sequence's last frame.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 rviz=false
 network=false
+track=false
 for arg in "$@"; do
   case "$arg" in
     --rviz) rviz=true ;;
     --network) network=true ;;
-    *) echo "usage: $0 [--rviz] [--network]" >&2; exit 2 ;;
+    --track) track=true ;;
+    *) echo "usage: $0 [--rviz] [--network] [--track]" >&2; exit 2 ;;
   esac
 done
 "$REPO/scripts/install_deps.sh"
@@ -63,3 +70,5 @@ awk -F, 'NR > 1 {
     if ($6 == 1) printf "object %d: ADD-S %.1f mm (%.1f%% of its %.0f mm diameter) %s\n", $5, $12, 100 * $12 / $9, $9, ($16 ? "found" : "WRONG")
     else printf "object %d: no pose\n", $5 }
   END { printf "%d of %d objects found\n", ok, n; exit (n > 0 && ok == n) ? 0 : 1 }' "$demo/targets.csv"
+$track || exit 0
+"$REPO/scripts/demo_tracking.sh" "$tool" "$demo"

@@ -19,6 +19,7 @@
 #include "stocs/estimation/pipeline.h"
 #include "stocs/model/model_cache.h"
 #include "stocs/tracking/frame_tracker.h"
+#include "stocs/tracking/stream_tracker.h"
 
 namespace stocs {
 

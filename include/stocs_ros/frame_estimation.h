@@ -8,11 +8,12 @@
 #include <sensor_msgs/PointCloud2.h>
 #include <std_msgs/Header.h>
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "stocs/estimation/frame.h"
-#include "stocs/tracking/frame_tracker.h"
+#include "stocs/tracking/stream_tracker.h"
 #include "stocs_ros/estimation_setup.h"
 #include "stocs_ros/segmentation_conversion.h"
 
@@ -59,9 +60,11 @@ struct FrameResult {
 /// boundary map) for bad encodings, sizes or parameters.
 FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup);
 
-/// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp;
-/// errors as estimateFrame's.
-FrameResult trackFrame(const EstimationJob& job, const EstimationSetup& setup,
-                       stocs::FrameTracker& tracker);
+/// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp:
+/// followed in the frame, detected in the background (stocs::StreamTracker, which holds `setup`
+/// while it detects); errors as estimateFrame's.
+FrameResult trackFrame(const EstimationJob& job,
+                       const std::shared_ptr<const EstimationSetup>& setup,
+                       stocs::StreamTracker& tracker);
 
 }  // namespace stocs_ros

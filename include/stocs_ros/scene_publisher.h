@@ -9,7 +9,9 @@
 // built, so that latencies measured from it (scripts/bench_latency.sh) are those of the receiver
 // and not of this player's own conversions. Each frame is read from disk (mostly PNG decoding) in
 // a thread of its own while the one before is published and the timer waits, so that reading
-// does not add to the time between frames.
+// does not add to the time between frames; with ~cache each frame is decoded once and kept, and
+// ~preload decodes every frame before the first is published, so that a loop (and, with
+// ~preload, every pass) sustains rates the decoding alone would not.
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -44,8 +46,13 @@ class ScenePublisher {
 
   /// Publishes the frame loaded since the last tick and starts loading the next.
   void onTimer(const ros::TimerEvent&);
-  /// Starts loading the next frame in a thread of its own (none after the last without ~loop).
+  /// Starts loading the next frame in a thread of its own (none after the last without ~loop),
+  /// or takes it from the cache.
   void loadNext();
+  /// Reads frame `index` of frames_ (kept in the cache with ~cache).
+  std::shared_ptr<const BopFrame> load(size_t index);
+  /// ~preload: every frame into the cache before the first is published.
+  void preload();
   /// Sets the stamp of a built message and publishes it.
   using Send = std::function<void(const ros::Time& stamp)>;
 
@@ -92,8 +99,12 @@ class ScenePublisher {
   GroundTruthMarkers truth_marker_builder_{config_};
   ros::Timer timer_;
   /// The frame being loaded; last, so that it is waited for before anything it uses goes.
+  /// ~cache: decoded frames by index into frames_ (null: not read yet); written by the loading
+  /// thread, one load at a time, and read before the next load starts.
+  std::vector<std::shared_ptr<const BopFrame>> cache_;
+  bool cache_frames_ = false;
   FrameRef pending_ref_{};
-  std::future<BopFrame> pending_;
+  std::future<std::shared_ptr<const BopFrame>> pending_;
 };
 
 }  // namespace stocs_ros

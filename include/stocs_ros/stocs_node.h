@@ -115,8 +115,9 @@ class StocsNode {
 
   OutputPublisher output_;
   SymmetricPoseTracker tracker_;  // worker thread only
-  /// Worker thread only: the tracks of the frames (never of ~estimate calls), for `tracked_setup_`.
-  std::optional<stocs::FrameTracker> frame_tracker_;
+  /// Worker thread only: the tracks of the frames (never of ~estimate calls), for `tracked_setup_`;
+  /// their full detections run on its own thread.
+  std::optional<stocs::StreamTracker> frame_tracker_;
   std::shared_ptr<const EstimationSetup> tracked_setup_;
 
   ros::CallbackQueue service_queue_;

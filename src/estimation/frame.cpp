@@ -37,29 +37,45 @@ PoseEstimate estimateWithStocs(const ObjectInput& in) {
                         *in.params, in.boundary, in.camera);
 }
 
+CameraIntrinsics frameCamera(const Frame& frame) {
+  return frame.camera ? *frame.camera : intrinsicsFromCloud(frame.cloud);
+}
+
+ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
+                        const FrameObject& object, const PipelineParams& params) {
+  ObjectInput input;
+  input.cloud = &frame.cloud;
+  input.camera = &camera;
+  input.probability = &probabilityOf(frame, object.name);
+  input.boundary = frame.boundary.empty() ? nullptr : &frame.boundary;
+  input.model = object.model;
+  input.params = &params;
+  return input;
+}
+
+void forObject(const std::string& name, const std::function<void()>& step) {
+  try {
+    step();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("object '{}': {}", name, e.what()));
+  }
+}
+
 std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
                                         const PipelineParams& params,
                                         const ObjectEstimator& estimate) {
-  const CameraIntrinsics camera = frame.camera ? *frame.camera : intrinsicsFromCloud(frame.cloud);
+  const CameraIntrinsics camera = frameCamera(frame);
   std::vector<ObjectResult> results;
   for (const FrameObject& object : objects) {
-    try {
-      ObjectInput input;
-      input.cloud = &frame.cloud;
-      input.camera = &camera;
-      input.probability = &probabilityOf(frame, object.name);
-      input.boundary = frame.boundary.empty() ? nullptr : &frame.boundary;
-      input.model = object.model;
-      input.params = &params;
+    forObject(object.name, [&] {
+      const ObjectInput input = objectInput(frame, camera, object, params);
       ObjectResult result;
       result.name = object.name;
       const double cpu_start = processCpuSeconds();
       result.estimate = estimate(input);
       result.cpu_seconds = processCpuSeconds() - cpu_start;
       results.push_back(std::move(result));
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("object '{}': {}", object.name, e.what()));
-    }
+    });
   }
   return results;
 }

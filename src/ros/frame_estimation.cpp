@@ -104,16 +104,17 @@ FrameResult estimateFrame(const EstimationJob& job, const EstimationSetup& setup
   return result;
 }
 
-FrameResult trackFrame(const EstimationJob& job, const EstimationSetup& setup,
-                       stocs::FrameTracker& tracker) {
-  const stocs::Frame frame = convertFrame(job, setup.config);
+FrameResult trackFrame(const EstimationJob& job,
+                       const std::shared_ptr<const EstimationSetup>& setup,
+                       stocs::StreamTracker& tracker) {
+  auto frame = std::make_shared<const stocs::Frame>(convertFrame(job, setup->config));
   FrameResult result;
   result.header = job.frame.header();
   std::optional<double> previous_input;
   if (job.previous_input) previous_input = job.previous_input->toSec();
   stocs::FrameTracking tracked =
-      tracker.track(frame, jobObjects(job, setup), jobParams(job, setup.config),
-                    result.header.stamp.toSec(), previous_input);
+      tracker.track(std::move(frame), jobObjects(job, *setup), jobParams(job, setup->config),
+                    result.header.stamp.toSec(), previous_input, setup);
   for (size_t k = 0; k < tracked.objects.size(); ++k) {
     stocs::TrackedObject& t = tracked.objects[k];
     result.objects.push_back({job.objects[k], std::move(t.result.estimate), std::move(t.states)});

@@ -142,6 +142,9 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
   }
   for (const ObjectConfig& o : config_.objects) object_ids_.push_back(o.id);
   const double rate = playbackRate(pnh, dataset_, scenes);
+  cache_frames_ = pnh.param("cache", false) || pnh.param("preload", false);
+  cache_.resize(frames_.size());
+  if (pnh.param("preload", false)) preload();
 
   cloud_ = pnh_.advertise<sensor_msgs::PointCloud2>("cloud", 2);
   depth_ = pnh_.advertise<sensor_msgs::Image>("depth", 2);
@@ -175,7 +178,8 @@ void ScenePublisher::onTimer(const ros::TimerEvent&) {
   }
   const FrameRef ref = pending_ref_;
   try {
-    const BopFrame frame = pending_.get();
+    const std::shared_ptr<const BopFrame> loaded = pending_.get();
+    const BopFrame& frame = *loaded;
     loadNext();  // while this one is published and until the next tick
     warnOfMissingMap(ref, frame);
     publish(ref, frame);
@@ -197,12 +201,37 @@ void ScenePublisher::loadNext() {
         5.0, "scene_publisher: pass %d: back to scene %d image %d (stamps keep increasing)", pass_,
         frames_[0].scene, frames_[0].image);
   }
-  pending_ref_ = frames_[next_++];
+  const size_t index = next_++;
+  pending_ref_ = frames_[index];
+  if (cache_[index]) {
+    std::promise<std::shared_ptr<const BopFrame>> cached;
+    cached.set_value(cache_[index]);
+    pending_ = cached.get_future();
+    return;
+  }
   // One load at a time: the probability source is not for use from several threads at once.
-  pending_ = std::async(std::launch::async, [this, ref = pending_ref_] {
-    return loadBopFrame(dataset_, ref.scene, ref.image, cameras_.at(ref.scene).at(ref.image),
-                        object_ids_, *probability_source_);
-  });
+  pending_ = std::async(std::launch::async, [this, index] { return load(index); });
+}
+
+std::shared_ptr<const BopFrame> ScenePublisher::load(size_t index) {
+  const FrameRef& ref = frames_[index];
+  auto frame = std::make_shared<const BopFrame>(loadBopFrame(dataset_, ref.scene, ref.image,
+                                                             cameras_.at(ref.scene).at(ref.image),
+                                                             object_ids_, *probability_source_));
+  if (cache_frames_) cache_[index] = frame;
+  return frame;
+}
+
+void ScenePublisher::preload() {
+  ROS_INFO("scene_publisher: decoding all %zu frames before publishing (~preload)", frames_.size());
+  for (size_t index = 0; index < frames_.size(); ++index) {
+    try {
+      load(index);
+    } catch (const InputError& e) {  // read again, and reported, when its turn comes
+      ROS_ERROR_THROTTLE(5.0, "scene_publisher: scene %d image %d: %s", frames_[index].scene,
+                         frames_[index].image, e.what());
+    }
+  }
 }
 
 namespace {

@@ -359,7 +359,11 @@ FrameResult StocsNode::track(const QueuedJob& queued) {
     frame_tracker_.emplace(queued.setup->config.tracking);  // a reload may change every object
     tracked_setup_ = queued.setup;
   }
-  return trackFrame(queued.job, *queued.setup, *frame_tracker_);
+  FrameResult result = trackFrame(queued.job, queued.setup, *frame_tracker_);
+  if (const std::optional<std::string> error = frame_tracker_->takeDetectionError()) {
+    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: background detection failed: %s", error->c_str());
+  }
+  return result;
 }
 
 FrameResult StocsNode::process(const QueuedJob& queued) {

@@ -6,11 +6,13 @@
 
 #include "commands.h"
 #include "stocs/util/error.h"
+#include "stocs/util/openmp_wait.h"
 #ifdef STOCS_HAVE_OPEN3D
 #include "stocs/methods/open3d_methods.h"
 #endif
 
 int main(int argc, char** argv) {
+  stocs::preferPassiveOpenMpWaiting(argv);
 #ifdef STOCS_HAVE_OPEN3D
   stocs::registerOpen3dMethods();  // before the options, whose help lists the methods
 #endif

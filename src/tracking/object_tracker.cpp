@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <stdexcept>
 
 #include "stocs/estimation/pipeline.h"
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/tracking/segment_follower.h"
+#include "track_assignment.h"
 
 namespace stocs {
 namespace {
@@ -51,20 +53,28 @@ class ObjectTracker::Step {
         settled_(tracker.tracks_.size(), 0),
         attempts_(tracker.tracks_.size()) {}
 
-  ObjectTracking run() {
+  /// Follows the live tracks.
+  void follow() {
+    const auto start = Clock::now();
+    failed_ = followLiveTracks();
+    seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  /// Searches and detects where following failed (or the schedule asks), unless `detect` is false
+  /// (a caller that detects in the background: ObjectTracker::merge), and reports the frame.
+  ObjectTracking conclude(bool detect) {
     const auto start = Clock::now();
     ObjectTracking out;
     const TrackingParams& params = tracker_.params_;
     const bool scheduled = may_redetect_ && tracker_.redetectionDue();
-    const bool failed = followLiveTracks();
     ++tracker_.frames_since_detection_;
     std::optional<PoseEstimate> search;  // the last one run: local, then full
-    if (failed && params.local_search && follower_) {
+    if (detect && failed_ && params.local_search && follower_) {
       search = follower_->search();
       assign(acceptedPoses(*search));
       out.searched = true;
     }
-    if (unsettled() || scheduled) {
+    if (detect && (unsettled() || scheduled)) {
       search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
                               *in_.model, *in_.params, in_.boundary, in_.camera);
       tracker_.frames_since_detection_ = 0;
@@ -73,7 +83,7 @@ class ObjectTracker::Step {
     }
     out.estimate = search ? std::move(*search) : PoseEstimate{};
     report(out);
-    out.estimate.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    out.estimate.seconds = seconds_ + std::chrono::duration<double>(Clock::now() - start).count();
     return out;
   }
 
@@ -113,77 +123,12 @@ class ObjectTracker::Step {
     return tracker_.tracks_.empty() || std::count(settled_.begin(), settled_.end(), 0) > 0;
   }
 
-  /// The track whose pose's model centre is nearest `pose`'s within the match distance, among
-  /// those `claimed` leaves free, or -1.
-  int nearestTrack(const InstancePose& pose, const std::vector<char>& claimed) const {
-    const float reach = tracker_.params_.match_distance * in_.model->model.diameter;
-    const Eigen::Vector3f at = pose.pose * extent_.centre();
-    int best = -1;
-    float best_distance = reach;
-    for (size_t k = 0; k < tracker_.tracks_.size(); ++k) {
-      const float d = (tracker_.tracks_[k].pose.pose * extent_.centre() - at).norm();
-      if (!claimed[k] && d < best_distance) {
-        best = static_cast<int>(k);
-        best_distance = d;
-      }
-    }
-    return best;
-  }
-
-  /// Where an accepted pose that continues no track goes: a track without a pose this frame, a
-  /// new track while there is room, or else the settled track it is preferred to (a tracked pose
-  /// on a look-alike, whose confidence is lower), or -1.
-  int placeFor(const InstancePose& pose, const std::vector<char>& claimed) {
-    std::vector<Track>& tracks = tracker_.tracks_;
-    for (size_t k = 0; k < tracks.size(); ++k) {
-      if (!claimed[k] && !settled_[k]) return static_cast<int>(k);
-    }
-    if (tracks.size() < static_cast<size_t>(in_.params->stocs.instances)) {
-      tracks.push_back({static_cast<int>(tracks.size()), TrackState::kRedetected, pose,
-                        ConstantVelocity(extent_.centre())});
-      settled_.push_back(0);
-      attempts_.emplace_back();
-      return static_cast<int>(tracks.size()) - 1;
-    }
-    int weakest = -1;
-    for (size_t k = 0; k < tracks.size(); ++k) {
-      if (claimed[k]) continue;
-      if (weakest < 0 || tracks[k].pose.confidence < tracks[weakest].pose.confidence) {
-        weakest = static_cast<int>(k);
-      }
-    }
-    return weakest >= 0 && tracks[weakest].pose.confidence < pose.confidence ? weakest : -1;
-  }
-
-  /// Hands the accepted poses of a search or detection (best first) to the tracks: each continues
-  /// its nearest track (a settled one keeps its tracked pose), the others go where placeFor says.
+  /// Hands the accepted poses of a search or detection (best first) to the tracks.
   void assign(const std::vector<InstancePose>& found) {
-    std::vector<char> claimed(tracker_.tracks_.size(), 0);
-    std::vector<const InstancePose*> unmatched;
-    for (const InstancePose& pose : found) {
-      const int k = nearestTrack(pose, claimed);
-      if (k < 0) {
-        unmatched.push_back(&pose);
-        continue;
-      }
-      claimed[k] = 1;
-      if (!settled_[k]) take(k, pose);
-    }
-    for (const InstancePose* pose : unmatched) {
-      const int k = placeFor(*pose, claimed);
-      if (k < 0) continue;
-      claimed.resize(tracker_.tracks_.size(), 0);
-      claimed[k] = 1;
-      take(k, *pose);
-    }
-  }
-
-  void take(int k, const InstancePose& pose) {
-    Track& track = tracker_.tracks_[k];
-    track.pose = pose;
-    track.state = TrackState::kRedetected;
-    track.motion.stop();  // a detection says nothing of the motion
-    settled_[k] = 1;
+    TrackAssignment(tracker_.tracks_, settled_, tracker_.params_, *in_.model,
+                    in_.params->stocs.instances)
+        .assign(found);
+    attempts_.resize(tracker_.tracks_.size());
   }
 
   /// Unsettled tracks become lost; every track's pose of the frame goes into `out`, in index order.
@@ -219,14 +164,52 @@ class ObjectTracker::Step {
   std::vector<char> settled_;
   std::vector<std::optional<InstancePose>> attempts_;  // failed follows, by track
   std::optional<SegmentFollower> follower_;
+  bool failed_ = false;  // a live track was not accepted
+  double seconds_ = 0;   // of follow()
 };
 
 ObjectTracker::ObjectTracker(const TrackingParams& params) : params_(params) {
   params_.validate();
 }
 
+ObjectTracker::~ObjectTracker() = default;
+ObjectTracker::ObjectTracker(ObjectTracker&&) noexcept = default;
+ObjectTracker& ObjectTracker::operator=(ObjectTracker&&) noexcept = default;
+
 ObjectTracking ObjectTracker::update(const ObjectInput& in, double dt, bool may_redetect) {
-  return Step(*this, in, dt, may_redetect).run();
+  follow(in, dt, may_redetect);
+  return conclude();
+}
+
+void ObjectTracker::follow(const ObjectInput& in, double dt, bool may_redetect) {
+  step_ = std::make_unique<Step>(*this, in, dt, may_redetect);
+  step_->follow();
+}
+
+ObjectTracking ObjectTracker::conclude() {
+  if (!step_) throw std::logic_error("ObjectTracker::conclude without follow");
+  const std::unique_ptr<Step> step = std::move(step_);
+  return step->conclude(true);
+}
+
+ObjectTracking ObjectTracker::followOnly(const ObjectInput& in, double dt) {
+  follow(in, dt, false);
+  const std::unique_ptr<Step> step = std::move(step_);
+  return step->conclude(false);
+}
+
+bool ObjectTracker::untracked() const {
+  const auto lost = [](const Track& t) { return t.state == TrackState::kLost; };
+  return tracks_.empty() || std::any_of(tracks_.begin(), tracks_.end(), lost);
+}
+
+std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const PreparedModel& model,
+                                      int max_instances) {
+  frames_since_detection_ = 0;
+  std::vector<char> settled;
+  for (const Track& t : tracks_) settled.push_back(t.state != TrackState::kLost);
+  return TrackAssignment(tracks_, settled, params_, model, max_instances)
+      .assign(acceptedPoses(detection));
 }
 
 bool ObjectTracker::redetectionDue() const {

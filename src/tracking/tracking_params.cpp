@@ -22,7 +22,8 @@ const ParamSet<TrackingParams>& TrackingParams::schema() {
                "a tracked object is segmented in its predicted box widened by this share")
           .flag("--roi-margin")
           .add(&TrackingParams::local_search, "local_search",
-               "when tracking fails, search the object's box with StoCS before the whole image")
+               "when tracking fails, search the object's box with StoCS before the whole image "
+               "(stocs estimate --track; the node detects in the background)")
           .flag("--local-search")
           .add(&TrackingParams::match_distance, "match_distance", "", ParamRange::aboveUpTo(0, 10),
                "a detection continues a track within this share of the diameter (model centres)")

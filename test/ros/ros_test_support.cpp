@@ -65,6 +65,21 @@ double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
   return error / stocs::pointSetDiameter(model.vertices);
 }
 
+int imageOf(const tf2_msgs::TFMessage& msg,
+            const std::map<int, std::vector<stocs::BopGtInstance>>& gt) {
+  for (const auto& [im, instances] : gt) {
+    bool all = instances.size() == msg.transforms.size();
+    for (size_t i = 0; i < instances.size() && all; ++i) {
+      const geometry_msgs::Vector3& t = msg.transforms[i].transform.translation;
+      all = std::abs(t.x - instances[i].t_mm.x() / 1000) < 1e-6 &&
+            std::abs(t.y - instances[i].t_mm.y() / 1000) < 1e-6 &&
+            std::abs(t.z - instances[i].t_mm.z() / 1000) < 1e-6;
+    }
+    if (all) return im;
+  }
+  return -1;
+}
+
 Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose) {
   Eigen::Isometry3d out;
   tf2::fromMsg(pose, out);

@@ -8,6 +8,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
 #include <sensor_msgs/PointCloud2.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <Eigen/Geometry>
 #include <condition_variable>
@@ -17,6 +18,9 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "stocs/io/bop_dataset.h"
 
 namespace stocs_ros::test {
 
@@ -68,6 +72,11 @@ Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scen
 /// real-frame tests, which forgives what the shape cannot tell apart.
 double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
                          const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
+
+/// The image whose ground truth (the scene publisher's gt_ frames) `msg` carries: the one with as
+/// many instances as `msg` has transforms, each at its translation in order; -1 when none matches.
+int imageOf(const tf2_msgs::TFMessage& msg,
+            const std::map<int, std::vector<stocs::BopGtInstance>>& gt);
 
 /// A pose message as an Eigen transform.
 Eigen::Isometry3d poseToEigen(const geometry_msgs::Pose& pose);

@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <mutex>
 
+#include "ros_test_support.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/sim/sequence_info.h"
 
@@ -15,23 +16,6 @@ namespace {
 
 std::string g_dataset;
 int g_messages = 40;  ///< TF messages to collect: more than one pass of the sequence
-
-/// The image whose ground truth `msg` carries: the one with as many instances as `msg` has
-/// transforms, each at its translation in order; -1 when none matches.
-int imageOf(const tf2_msgs::TFMessage& msg,
-            const std::map<int, std::vector<stocs::BopGtInstance>>& gt) {
-  for (const auto& [im, instances] : gt) {
-    bool all = instances.size() == msg.transforms.size();
-    for (size_t i = 0; i < instances.size() && all; ++i) {
-      const geometry_msgs::Vector3& t = msg.transforms[i].transform.translation;
-      all = std::abs(t.x - instances[i].t_mm.x() / 1000) < 1e-6 &&
-            std::abs(t.y - instances[i].t_mm.y() / 1000) < 1e-6 &&
-            std::abs(t.z - instances[i].t_mm.z() / 1000) < 1e-6;
-    }
-    if (all) return im;
-  }
-  return -1;
-}
 
 TEST(SequencePlayback, FramesComeInOrderWithTheirGroundTruthAndIncreasingStamps) {
   const stocs::BopDataset dataset(g_dataset);
@@ -62,7 +46,7 @@ TEST(SequencePlayback, FramesComeInOrderWithTheirGroundTruthAndIncreasingStamps)
   ASSERT_NE(removal, nullptr);
   int previous = -1, restarts = 0, removed_frames = 0;
   for (size_t k = 0; k < received.size(); ++k) {
-    const int im = imageOf(received[k], gt);
+    const int im = stocs_ros::test::imageOf(received[k], gt);
     ASSERT_GE(im, 0) << "message " << k << " matches no image's ground truth";
     if (k > 0) {
       EXPECT_GT(received[k].transforms[0].header.stamp, received[k - 1].transforms[0].header.stamp);

@@ -169,6 +169,26 @@ TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
   EXPECT_GT(poseAt(checked).confidence, poseAt(held).confidence);
 }
 
+TEST_F(TrackerTest, ScheduledDetectionTurnsATrackHeldAtTheRightPlaceTheWrongWay) {
+  // Between two frames the block turns about its centre: following from the last pose may settle
+  // turned the wrong way at the right place; the scheduled detection there, which the confidence
+  // prefers, replaces it.
+  const Eigen::Vector3f centre = truth_ * PoseProximity(model_->model).centre();
+  Eigen::Isometry3f turned = truth_;
+  turned.linear() =
+      Eigen::AngleAxisf(0.5f * static_cast<float>(M_PI), truth_.linear().col(2)) * truth_.linear();
+  turned.translation() = centre - turned.linear() * PoseProximity(model_->model).centre();
+  TrackingParams params;
+  params.redetect_every = 1;
+  FrameTracker tracker(params);
+  track(tracker, frameAt(truth_), 0.0);
+  const FrameTracking t = track(tracker, frameAt(turned), kFramePeriod);
+  const InstancePose& pose = t.objects.at(0).result.estimate.instances.at(0);
+  ASSERT_TRUE(pose.accepted);
+  EXPECT_LT(adds(pose.pose, turned), 0.05 * model_->model.diameter)
+      << toString(t.objects[0].states[0]);
+}
+
 TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
   FrameTracker tracker{TrackingParams{}};
   track(tracker, frameAt(truth_), 0.0);
@@ -252,6 +272,176 @@ TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
   // Both are due on frame 2: the first object detects there, the second one frame later.
   EXPECT_EQ(first, (std::vector<bool>{true, false, true, false, true}));
   EXPECT_EQ(second, (std::vector<bool>{true, false, false, true, false}));
+}
+
+/// The poses of every object over three frames of a moving block, `threads` following at once.
+std::vector<Eigen::Matrix4f> posesOverFrames(FrameTracker& tracker,
+                                             const std::vector<FrameObject>& objects,
+                                             PipelineParams params, const Frame (&frames)[3],
+                                             int threads) {
+  params.stocs.threads = threads;
+  std::vector<Eigen::Matrix4f> poses;
+  for (int k = 0; k < 3; ++k) {
+    for (const TrackedObject& o :
+         tracker.track(frames[k], objects, params, k * kFramePeriod).objects) {
+      poses.push_back(o.result.estimate.instances.at(0).pose.matrix());
+    }
+  }
+  return poses;
+}
+
+TEST_F(TrackerTest, ObjectsFollowedInParallelMatchThoseFollowedInTurn) {
+  Frame frames[3] = {frameAt(truth_), frameAt(moved(truth_, 4, 1)), frameAt(moved(truth_, 8, 2))};
+  std::vector<FrameObject> objects;  // four objects of the same block: their poses must agree
+  for (const char* name : {"block", "b", "c", "d"}) objects.push_back({name, model_.get()});
+  for (Frame& f : frames) {
+    for (const FrameObject& o : objects) f.probabilities[o.name] = f.probabilities.at("block");
+  }
+  FrameTracker in_turn{TrackingParams{}}, in_parallel{TrackingParams{}};
+  const auto expected = posesOverFrames(in_turn, objects, estimator_.params(), frames, 1);
+  const auto actual = posesOverFrames(in_parallel, objects, estimator_.params(), frames, 2);
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t k = 0; k < expected.size(); ++k)
+    EXPECT_TRUE(actual[k].isApprox(expected[k], 1e-6f)) << k;
+}
+
+/// An accepted pose with `confidence`, for merging.
+PoseEstimate detectionOf(const Eigen::Isometry3f& pose, float confidence) {
+  PoseEstimate e;
+  InstancePose p;
+  p.pose = pose;
+  p.confidence = confidence;
+  e.instances.push_back(p);
+  e.takeFirstInstance();
+  return e;
+}
+
+TEST_F(TrackerTest, AMergedDetectionReplacesATrackedPoseOnlyWhenPreferred) {
+  ObjectTracker tracker{TrackingParams{}};
+  const Frame frame = frameAt(truth_);
+  const ObjectInput in =
+      objectInput(frame, frameCamera(frame), {"block", model_.get()}, estimator_.params());
+  tracker.update(in, 0.0);
+  tracker.update(in, kFramePeriod);
+  ASSERT_EQ(tracker.tracks().at(0).state, TrackState::kTracked);
+  const float held = tracker.tracks()[0].pose.confidence;
+  const Eigen::Isometry3f before = tracker.tracks()[0].pose.pose;
+  const Eigen::Isometry3f near = moved(truth_, 3, 0);  // the track's place
+  Eigen::Isometry3f far = truth_;
+  far.translation().x() += model_->model.diameter;  // beyond the match distance
+  // One instance: a detection the confidence does not prefer leaves the tracked pose alone,
+  // at the track's place or elsewhere.
+  EXPECT_TRUE(tracker.merge(detectionOf(near, held - 0.1f), *model_, 1).empty());
+  EXPECT_TRUE(tracker.merge(detectionOf(far, held - 0.1f), *model_, 1).empty());
+  EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(before));
+  EXPECT_EQ(tracker.tracks()[0].state, TrackState::kTracked);
+  // Preferred: it replaces the pose, as a detection of the track (its index stays, no motion).
+  EXPECT_EQ(tracker.merge(detectionOf(far, held + 0.05f), *model_, 1), std::vector<int>{0});
+  ASSERT_EQ(tracker.tracks().size(), 1u);
+  EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(far));
+  EXPECT_EQ(tracker.tracks()[0].state, TrackState::kRedetected);
+  EXPECT_EQ(tracker.tracks()[0].motion.linear().norm(), 0.0f);
+  // Room for a second instance: a pose elsewhere starts a new track and the first one stays.
+  EXPECT_EQ(tracker.merge(detectionOf(truth_, 0.5f), *model_, 2), std::vector<int>{1});
+  ASSERT_EQ(tracker.tracks().size(), 2u);
+  EXPECT_EQ(tracker.tracks()[1].index, 1);
+  EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(far));
+}
+
+TEST_F(TrackerTest, FollowingOnlyLosesAFailedTrackAndAMergedDetectionFindsItAgain) {
+  FrameTracker tracker{TrackingParams{}};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const PipelineParams& params = estimator_.params();
+  const Frame frame = frameAt(truth_);
+  // No track yet: nothing published, detection wanted.
+  const FrameTracking none = tracker.follow(frame, objects, params, 0.0, std::nullopt, nullptr);
+  EXPECT_TRUE(none.objects.at(0).result.estimate.instances.empty());
+  EXPECT_FALSE(none.objects[0].detected);
+  ASSERT_EQ(tracker.detectionWanted(objects).size(), 1u);
+  // The detection of that frame, merged at the next one: followed from there, redetected.
+  const FrameDetection detection{tracker.generation(), estimateFrame(frame, objects, params)};
+  const Eigen::Isometry3f next = moved(truth_, 4, 2);
+  const FrameTracking found =
+      tracker.follow(frameAt(next), objects, params, kFramePeriod, std::nullopt, &detection);
+  ASSERT_EQ(found.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(found.objects[0].detected);
+  EXPECT_EQ(found.counts.detections, 1);
+  EXPECT_LT(adds(found.objects[0].result.estimate.instances.at(0).pose, next),
+            0.02 * model_->model.diameter);
+  EXPECT_TRUE(tracker.detectionWanted(objects).empty());  // tracked, schedule not due
+  const FrameTracking tracked =
+      tracker.follow(frameAt(next), objects, params, 2 * kFramePeriod, std::nullopt, nullptr);
+  EXPECT_EQ(tracked.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
+  // The map vanishes: lost at once (no detection in the frame), and detection is wanted.
+  const FrameTracking gone = tracker.follow(frameAt(next, false), objects, params, 3 * kFramePeriod,
+                                            std::nullopt, nullptr);
+  EXPECT_EQ(gone.objects[0].states, std::vector<TrackState>{TrackState::kLost});
+  EXPECT_FALSE(gone.objects[0].detected);
+  EXPECT_FALSE(gone.objects[0].result.estimate.instances.at(0).accepted);
+  EXPECT_EQ(tracker.detectionWanted(objects).size(), 1u);
+}
+
+TEST_F(TrackerTest, ADetectionOfEndedTracksIsNotMerged) {
+  FrameTracker tracker{TrackingParams{}};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const PipelineParams& params = estimator_.params();
+  const Frame frame = frameAt(truth_);
+  tracker.follow(frame, objects, params, 5.0, std::nullopt, nullptr);
+  const FrameDetection detection{tracker.generation(), estimateFrame(frame, objects, params)};
+  // The bag looped while it ran: the tracks ended, and the detection is of another time.
+  const FrameTracking loop = tracker.follow(frame, objects, params, 1.0, std::nullopt, &detection);
+  EXPECT_TRUE(loop.counts.reset);
+  EXPECT_FALSE(loop.objects.at(0).detected);
+  EXPECT_TRUE(loop.objects[0].result.estimate.instances.empty());
+}
+
+TEST_F(TrackerTest, OneScheduledDetectionIsWantedAtATime) {
+  TrackingParams params;
+  params.redetect_every = 2;
+  FrameTracker tracker(params);
+  Frame frame = frameAt(truth_);
+  frame.probabilities["copy"] = frame.probabilities["block"];
+  frame.probabilities["new"] = frame.probabilities["block"];
+  const std::vector<FrameObject> both = {{"block", model_.get()}, {"copy", model_.get()}};
+  tracker.track(frame, both, estimator_.params(), 0.0);
+  tracker.track(frame, both, estimator_.params(), kFramePeriod);  // both due now
+  std::vector<FrameObject> objects = both;
+  objects.push_back({"new", model_.get()});  // no track: always wanted
+  std::vector<std::string> wanted;
+  for (const FrameObject& o : tracker.detectionWanted(objects)) wanted.push_back(o.name);
+  EXPECT_EQ(wanted, (std::vector<std::string>{"block", "new"}));
+}
+
+TEST_F(TrackerTest, AStreamDetectsInTheBackgroundAndMergesAtTheNextFrame) {
+  StreamTracker tracker{TrackingParams{}};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const auto frame = [&](const Eigen::Isometry3f& at) {
+    return std::make_shared<const Frame>(frameAt(at));
+  };
+  const FrameTracking first = tracker.track(frame(truth_), objects, estimator_.params(), 0.0);
+  EXPECT_TRUE(first.objects.at(0).result.estimate.instances.empty());  // detection started
+  tracker.waitForDetection();
+  const Eigen::Isometry3f next = moved(truth_, 4, 2);
+  const FrameTracking second =
+      tracker.track(frame(next), objects, estimator_.params(), kFramePeriod);
+  ASSERT_EQ(second.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_LT(adds(second.objects[0].result.estimate.instances.at(0).pose, next),
+            0.02 * model_->model.diameter);
+  const FrameTracking third =
+      tracker.track(frame(next), objects, estimator_.params(), 2 * kFramePeriod);
+  EXPECT_EQ(third.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
+  EXPECT_FALSE(tracker.takeDetectionError());
+}
+
+TEST_F(TrackerTest, AnObjectWithoutAMapIsNamed) {
+  FrameTracker tracker{TrackingParams{}};
+  const Frame frame = frameAt(truth_);
+  try {
+    tracker.track(frame, {{"block", model_.get()}, {"cup", model_.get()}}, estimator_.params(), 0);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("object 'cup'"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(TrackerTest, BadParametersAreNamed) {

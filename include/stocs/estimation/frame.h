@@ -66,6 +66,19 @@ using ObjectEstimator = std::function<PoseEstimate(const ObjectInput&)>;
 /// StoCS on one object (estimateObject).
 PoseEstimate estimateWithStocs(const ObjectInput& input);
 
+/// The frame's intrinsics, else those recovered from its cloud.
+CameraIntrinsics frameCamera(const Frame& frame);
+
+/// What the estimation of `object` in `frame` reads (pointing into the arguments, which must
+/// outlive it). Throws InputError when the frame has no probability map for it or the map does not
+/// fit the cloud.
+ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
+                        const FrameObject& object, const PipelineParams& params);
+
+/// Runs `step`, the work of one object, prefixing an InputError it throws with the object's name
+/// ("object 'cat': ...").
+void forObject(const std::string& name, const std::function<void()>& step);
+
 /// Every object of `objects`, one after the other (each uses every thread), in that order. The
 /// camera is recovered from the cloud once when the frame has none. Throws InputError naming the
 /// object ("object 'cat': ...") when the frame has no probability map for it or the map does not

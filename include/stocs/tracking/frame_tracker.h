@@ -3,6 +3,7 @@
 // a gap longer than TrackingParams::max_gap or a stamp going back (a bag played in a loop) ends
 // every track first. Shared by `stocs estimate --track` and the ROS node.
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,6 +35,12 @@ struct FrameTracking {
   TrackingCounts counts;
 };
 
+/// Full detections of some objects in one frame, for FrameTracker::follow.
+struct FrameDetection {
+  std::uint64_t generation = 0;       ///< FrameTracker::generation() of the frame detected
+  std::vector<ObjectResult> objects;  ///< estimateFrame's results
+};
+
 class FrameTracker {
  public:
   /// Throws InputError naming the first parameter out of range.
@@ -42,12 +49,28 @@ class FrameTracker {
   /// The objects of `frame`, taken at `stamp` (seconds), as estimateFrame takes them (same
   /// errors); each keeps its tracks by name. `previous_input`, where the caller skipped input
   /// frames (a node that keeps up by taking the newest frame), is the stamp of the input frame
-  /// before this one: the gap test measures the input's gap, not the time the tracker took. Of the
-  /// objects whose scheduled full detection is due, the first in `objects` runs it; the others wait
-  /// for later frames.
+  /// before this one: the gap test measures the input's gap, not the time the tracker took. The
+  /// objects follow their tracks in parallel (StocsParams::threads, 0: every core), then search and
+  /// detect where needed one after the other. Of the objects whose scheduled full detection is
+  /// due, the first in `objects` runs it; the others wait for later frames.
   FrameTracking track(const Frame& frame, const std::vector<FrameObject>& objects,
                       const PipelineParams& params, double stamp,
                       std::optional<double> previous_input = std::nullopt);
+  /// Tracking without detection in the frame, for a caller that detects in the background
+  /// (StreamTracker): first merges `detection` (full detections of an earlier frame; dropped when
+  /// the tracks ended since) into the tracks of the objects in `objects` (ObjectTracker::merge),
+  /// then follows every track (ObjectTracker::followOnly), objects in parallel. A track followed
+  /// from a merged pose is reported redetected and its object detected; a track not accepted is
+  /// lost until a detection finds it. Errors as track()'s.
+  FrameTracking follow(const Frame& frame, const std::vector<FrameObject>& objects,
+                       const PipelineParams& params, double stamp,
+                       std::optional<double> previous_input, const FrameDetection* detection);
+  /// The objects of `objects` that want full detection after the last frame: each without a track
+  /// or with a lost one, and the first whose schedule (TrackingParams::redetect_every) is due.
+  std::vector<FrameObject> detectionWanted(const std::vector<FrameObject>& objects) const;
+  /// Counts the resets: a detection of an earlier generation belongs to ended tracks.
+  std::uint64_t generation() const { return generation_; }
+
   /// Ends every track: the next frame starts with detection.
   void reset();
 
@@ -59,10 +82,26 @@ class FrameTracker {
   /// Whether a frame at `stamp` (the input's previous frame at `previous_input`, else the last
   /// tracked one) must not continue the tracks.
   bool timeJumped(double stamp, std::optional<double> previous_input) const;
+  /// Ends the tracks if the frame at `stamp` may not continue them (counted in `out`); the time
+  /// since the last frame (0 after a reset).
+  double begin(FrameTracking& out, double stamp, std::optional<double> previous_input);
+
+  struct Inputs {
+    std::vector<ObjectInput> inputs;       // per object
+    std::vector<ObjectTracker*> trackers;  // per object, created where new
+  };
+  /// What each object reads (pointing into the arguments) and its tracker.
+  Inputs inputs(const Frame& frame, const CameraIntrinsics& camera,
+                const std::vector<FrameObject>& objects, const PipelineParams& params);
+  /// The tracks that took a pose of `detection`, by object name.
+  std::map<std::string, std::vector<int>> merge(const FrameDetection& detection,
+                                                const std::vector<FrameObject>& objects,
+                                                int max_instances);
 
   TrackingParams params_;
   std::map<std::string, ObjectTracker> objects_;
   std::optional<double> last_stamp_;
+  std::uint64_t generation_ = 0;
 };
 
 }  // namespace stocs

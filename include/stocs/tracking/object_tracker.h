@@ -13,6 +13,7 @@
 // match_distance), so an instance keeps its index while it is seen; further accepted poses start
 // new tracks up to StocsParams::instances.
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,13 +55,35 @@ class ObjectTracker {
  public:
   /// Throws InputError naming the first parameter out of range.
   explicit ObjectTracker(const TrackingParams& params);
+  ~ObjectTracker();
+  ObjectTracker(ObjectTracker&&) noexcept;
+  ObjectTracker& operator=(ObjectTracker&&) noexcept;
 
-  /// The object in a new frame `dt` seconds after the previous one. The scheduled full detection
-  /// runs only where `may_redetect` allows it (else on a later frame).
+  /// The object in a new frame `dt` seconds after the previous one: follow(), then conclude(). The
+  /// scheduled full detection runs only where `may_redetect` allows it (else on a later frame).
   ObjectTracking update(const ObjectInput& in, double dt, bool may_redetect = true);
+  /// The first half of update(): follows the live tracks (one thread; trackers of different
+  /// objects may follow at the same time). `in` must outlive the conclude() that follows.
+  void follow(const ObjectInput& in, double dt, bool may_redetect = true);
+  /// The second half: searches and detects where following failed or the schedule asks (every
+  /// thread), and returns the frame's outcome. Only after follow().
+  ObjectTracking conclude();
   /// Whether the schedule (TrackingParams::redetect_every) asks for full detection in the next
   /// frame.
   bool redetectionDue() const;
+
+  /// For a caller that detects in the background (StreamTracker): follows the live tracks and
+  /// reports the frame without searching or detecting; a track that is not accepted is lost until
+  /// a detection merged with merge() finds it again.
+  ObjectTracking followOnly(const ObjectInput& in, double dt);
+  /// Whether an instance is missing: no track yet, or a lost one (detection keeps trying).
+  bool untracked() const;
+  /// Hands the accepted poses of a full detection (of this or an earlier frame) to the tracks as
+  /// a frame's detection does, the tracks that are not lost counting as settled (a detection the
+  /// confidence prefers replaces one), and restarts the schedule; the indices of the tracks that
+  /// took a pose. `max_instances`: StocsParams::instances.
+  std::vector<int> merge(const PoseEstimate& detection, const PreparedModel& model,
+                         int max_instances);
 
   const std::vector<Track>& tracks() const { return tracks_; }
 
@@ -69,6 +92,7 @@ class ObjectTracker {
   TrackingParams params_;
   std::vector<Track> tracks_;  // by index: indices are 0, 1, ... in order of first detection
   int frames_since_detection_ = 0;
+  std::unique_ptr<Step> step_;  // between follow() and conclude()
 };
 
 }  // namespace stocs

@@ -22,7 +22,8 @@ struct TrackingParams {
   /// A tracked object is segmented in the image box of its predicted bounding sphere, widened by
   /// this share of the box's size on each side.
   float roi_margin = 0.5f;
-  /// When tracking fails, StoCS first searches the tracked object's box before the whole image.
+  /// When tracking fails, StoCS first searches the tracked object's box before the whole image
+  /// (FrameTracker::track; StreamTracker, the node's, detects the whole image in the background).
   bool local_search = true;
   /// A detected pose continues a track when its model centre lies within this share of the
   /// object's diameter of the track's (the track keeps its instance index).

@@ -225,8 +225,12 @@ TEST_F(FrameEstimation, BadSegmentationMessagesAreNamed) {
 TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   const auto s = setup("tracking: {enabled: true}\n");
   ASSERT_TRUE(s->config.tracking.enabled);
-  stocs::FrameTracker tracker(s->config.tracking);
-  const FrameResult first = trackFrame(cloudJob(3.0), *s, tracker);
+  stocs::StreamTracker tracker(s->config.tracking);
+  // The first frame starts the background detection: nothing to publish yet.
+  const FrameResult started = trackFrame(cloudJob(3.0), s, tracker);
+  EXPECT_TRUE(toObjectPoseArray(started, *s).objects.empty());
+  tracker.waitForDetection();
+  const FrameResult first = trackFrame(cloudJob(3.0 + 1.0 / 30), s, tracker);
   expectFoundNearTruth(first);
   EXPECT_EQ(first.objects[0].states,
             std::vector<stocs::TrackState>{stocs::TrackState::kRedetected});
@@ -234,15 +238,15 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   EXPECT_EQ(first.tracking->redetected, 1);
   EXPECT_EQ(toObjectPoseArray(first, *s).objects.at(0).state, ObjectPose::REDETECTED);
 
-  const FrameResult next = trackFrame(cloudJob(3.0 + 1.0 / 30), *s, tracker);
+  const FrameResult next = trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker);
   expectFoundNearTruth(next);
   EXPECT_EQ(next.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kTracked});
   EXPECT_EQ(toObjectPoseArray(next, *s).objects.at(0).state, ObjectPose::TRACKED);
 
   // The map vanishes: the box is lost, listed as rejected and lost, with no pose published.
-  EstimationJob gone = cloudJob(3.0 + 2.0 / 30);
+  EstimationJob gone = cloudJob(3.0 + 3.0 / 30);
   gone.frame.probabilities[0] = image("32FC1", cv::Mat(240, 320, CV_32FC1, cv::Scalar(0)));
-  const FrameResult lost = trackFrame(gone, *s, tracker);
+  const FrameResult lost = trackFrame(gone, s, tracker);
   EXPECT_EQ(lost.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kLost});
   const ObjectPoseArray lost_msg = toObjectPoseArray(lost, *s);
   EXPECT_TRUE(lost_msg.objects.empty());

@@ -1,0 +1,91 @@
+#include "track_assignment.h"
+
+namespace stocs {
+
+TrackAssignment::TrackAssignment(std::vector<Track>& tracks, std::vector<char>& settled,
+                                 const TrackingParams& params, const PreparedModel& model,
+                                 int max_instances)
+    : tracks_(tracks),
+      settled_(settled),
+      reach_(params.match_distance * model.model.diameter),
+      max_instances_(max_instances),
+      extent_(model.model) {}
+
+/// The track whose pose's model centre is nearest `pose`'s within the match distance, among those
+/// `claimed` leaves free, or -1.
+int TrackAssignment::nearestTrack(const InstancePose& pose,
+                                  const std::vector<char>& claimed) const {
+  const Eigen::Vector3f at = pose.pose * extent_.centre();
+  int best = -1;
+  float best_distance = reach_;
+  for (size_t k = 0; k < tracks_.size(); ++k) {
+    const float d = (tracks_[k].pose.pose * extent_.centre() - at).norm();
+    if (!claimed[k] && d < best_distance) {
+      best = static_cast<int>(k);
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+/// Where an accepted pose that continues no track goes: a track without a pose this frame, a new
+/// track while there is room, or else the settled track it is preferred to (a tracked pose on a
+/// look-alike, whose confidence is lower), or -1.
+int TrackAssignment::placeFor(const InstancePose& pose, const std::vector<char>& claimed) {
+  for (size_t k = 0; k < tracks_.size(); ++k) {
+    if (!claimed[k] && !settled_[k]) return static_cast<int>(k);
+  }
+  if (tracks_.size() < static_cast<size_t>(max_instances_)) {
+    tracks_.push_back({static_cast<int>(tracks_.size()), TrackState::kRedetected, pose,
+                       ConstantVelocity(extent_.centre())});
+    settled_.push_back(0);
+    return static_cast<int>(tracks_.size()) - 1;
+  }
+  int weakest = -1;
+  for (size_t k = 0; k < tracks_.size(); ++k) {
+    if (claimed[k]) continue;
+    if (weakest < 0 || tracks_[k].pose.confidence < tracks_[weakest].pose.confidence) {
+      weakest = static_cast<int>(k);
+    }
+  }
+  return weakest >= 0 && tracks_[weakest].pose.confidence < pose.confidence ? weakest : -1;
+}
+
+std::vector<int> TrackAssignment::assign(const std::vector<InstancePose>& found) {
+  std::vector<int> taken;
+  std::vector<char> claimed(tracks_.size(), 0);
+  std::vector<const InstancePose*> unmatched;
+  for (const InstancePose& pose : found) {
+    const int k = nearestTrack(pose, claimed);
+    if (k < 0) {
+      unmatched.push_back(&pose);
+      continue;
+    }
+    claimed[k] = 1;
+    // A settled track keeps its tracked pose unless the confidence prefers the detection: the
+    // same place turned otherwise (a mug's handle) is no other track, but may be the right pose.
+    if (!settled_[k] || pose.confidence > tracks_[k].pose.confidence) {
+      take(k, pose);
+      taken.push_back(k);
+    }
+  }
+  for (const InstancePose* pose : unmatched) {
+    const int k = placeFor(*pose, claimed);
+    if (k < 0) continue;
+    claimed.resize(tracks_.size(), 0);
+    claimed[k] = 1;
+    take(k, *pose);
+    taken.push_back(k);
+  }
+  return taken;
+}
+
+void TrackAssignment::take(int k, const InstancePose& pose) {
+  Track& track = tracks_[k];
+  track.pose = pose;
+  track.state = TrackState::kRedetected;
+  track.motion.stop();  // a detection says nothing of the motion
+  settled_[k] = 1;
+}
+
+}  // namespace stocs
