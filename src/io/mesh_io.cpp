@@ -1,5 +1,6 @@
 // Reading a model file by its extension (PLY and PCD through PCL, the other mesh formats through
-// assimp), then the checks every format shares: finite coordinates and a plausible size.
+// assimp, in a child process), then the checks every format shares: finite coordinates and a
+// plausible size.
 #include "stocs/io/mesh_io.h"
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include <filesystem>
 
 #include "assimp_model.h"
+#include "child_reader.h"
 #include "pcl_model.h"
 #include "stocs/util/error.h"
 
@@ -26,7 +28,10 @@ std::string lowerExtension(const std::string& path) {
 MeshData readModelFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".ply" || ext == ".pcd") return detail::readPclModel(path, ext);
-  if (detail::isAssimpFormat(ext)) return detail::readAssimpModel(path, ext);
+  if (detail::isAssimpFormat(ext)) {
+    // In a child process: assimp crashes on some malformed files (fuzz/known_crashes).
+    return detail::readInChildProcess(path, [&] { return detail::readAssimpModel(path, ext); });
+  }
   throw InputError(fmt::format(
       "model {}: unsupported extension '{}' (use .ply, .pcd, .obj, .stl, .dae, .gltf or .glb)",
       path, ext));

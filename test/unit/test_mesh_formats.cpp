@@ -9,6 +9,7 @@
 #include <assimp/Importer.hpp>
 
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <tuple>
 
@@ -224,6 +225,26 @@ TEST(MeshFormats, BadMeshFilesGiveErrorsNamingTheFileAndProblem) {
               R"("byteLength": 12}], "buffers": [{"byteLength": 12, "uri": )"
               R"("data:application/octet-stream;base64,AAAAAAAAAAAAAAAA"}]})",
               "is out of range");
+}
+
+// A malformed COLLADA file on which Debian's assimp 5.2.5 reads address 0 (found by
+// fuzz_mesh_model): the reader's crash becomes an error naming the file, and the process goes on
+// reading models.
+TEST(MeshFormats, AReaderCrashGivesAnErrorNamingTheFile) {
+  std::ifstream in("fuzz/known_crashes/assimp_dae_null_read", std::ios::binary);
+  ASSERT_TRUE(in) << "the test runs in the source folder";
+  const std::string input((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const fs::path dir = test::scratchDir("formats_crash");
+  writeBytes(dir / "crash.dae", input.substr(1));  // the fuzz input's first byte picks the format
+  const std::string error = errorOf(dir / "crash.dae");
+  // "crashed (signal 11: ...)"; under AddressSanitizer, which catches the SEGV, "failed (exit
+  // code 1)".
+  EXPECT_NE(error.find("model " + (dir / "crash.dae").string() + ": the mesh reader "),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find(" reading this file"), std::string::npos) << error;
+  writeBytes(dir / "quad.obj", kQuadObj);
+  EXPECT_EQ(loadMesh((dir / "quad.obj").string(), 0.001f).triangles.size(), 2u);
 }
 
 }  // namespace
