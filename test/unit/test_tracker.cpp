@@ -319,8 +319,8 @@ PoseEstimate detectionOf(const Eigen::Isometry3f& pose, float confidence) {
 TEST_F(TrackerTest, AMergedDetectionReplacesATrackedPoseOnlyWhenPreferred) {
   ObjectTracker tracker{TrackingParams{}};
   const Frame frame = frameAt(truth_);
-  const ObjectInput in =
-      objectInput(frame, frameCamera(frame), {"block", model_.get()}, estimator_.params());
+  const CameraIntrinsics camera = frameCamera(frame);  // the input points to it
+  const ObjectInput in = objectInput(frame, camera, {"block", model_.get()}, estimator_.params());
   tracker.update(in, 0.0);
   tracker.update(in, kFramePeriod);
   ASSERT_EQ(tracker.tracks().at(0).state, TrackState::kTracked);

@@ -74,6 +74,9 @@ CameraIntrinsics frameCamera(const Frame& frame);
 /// fit the cloud.
 ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
                         const FrameObject& object, const PipelineParams& params);
+/// A temporary camera would not outlive the input that points to it.
+ObjectInput objectInput(const Frame& frame, CameraIntrinsics&& camera, const FrameObject& object,
+                        const PipelineParams& params) = delete;
 
 /// Runs `step`, the work of one object, prefixing an InputError it throws with the object's name
 /// ("object 'cat': ...").
