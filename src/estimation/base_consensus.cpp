@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <utility>
 
+#include "stocs/estimation/pose_confidence.h"
+
 namespace stocs {
 
 namespace {
@@ -33,6 +35,20 @@ void BaseConsensus::add(int base, float score, const Eigen::Isometry3f& pose) {
   }
   best_.insert(at, Entry{score, base, pose, -1});
   if (best_.size() > needed_) best_.pop_back();
+}
+
+float consensusShare(const Eigen::Isometry3f& pose,
+                     const std::vector<Eigen::Isometry3f>& base_poses,
+                     const InstanceSeparation& same_place, const Eigen::Vector3f& centre,
+                     float separation) {
+  const int needed = ConfidenceEvidence::kConsensusBases;
+  const Eigen::Vector3f at = pose * centre;
+  int agree = 0;
+  for (size_t i = 0; i < base_poses.size() && agree < needed; ++i) {
+    if ((base_poses[i] * centre - at).norm() >= separation) continue;
+    agree += same_place.samePlace(pose, base_poses[i]);
+  }
+  return static_cast<float>(agree) / static_cast<float>(needed);
 }
 
 bool BaseConsensus::reached() {

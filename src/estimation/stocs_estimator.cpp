@@ -88,21 +88,16 @@ std::vector<Hypothesis> rankBases(const std::vector<BaseOutcome>& outcomes, Pose
   return ranked;
 }
 
-/// Sets each instance's consensus evidence: of the bases (best first) whose pose puts the model's
-/// centre within `separation` of the instance's, those in the same place up to symmetries, at most
-/// kConsensusBases, as a share of kConsensusBases. The centre test spares most ADD-S tests.
+/// Keeps the bases' poses (best first) in the estimate and sets each instance's consensus evidence
+/// from them (consensusShare).
 void addConsensus(const ObjectModel& model, const Eigen::Vector3f& centre, float separation,
-                  const std::vector<Hypothesis>& ranked, std::vector<InstancePose>& instances) {
+                  const std::vector<Hypothesis>& ranked, PoseEstimate& estimate) {
+  estimate.base_poses.clear();
+  for (const Hypothesis& h : ranked) estimate.base_poses.push_back(h.pose);
   const InstanceSeparation same_place(model, separation);
-  const int needed = ConfidenceEvidence::kConsensusBases;
-  for (InstancePose& instance : instances) {
-    const Eigen::Vector3f at = instance.pose * centre;
-    int agree = 0;
-    for (size_t i = 0; i < ranked.size() && agree < needed; ++i) {
-      if ((ranked[i].pose * centre - at).norm() >= separation) continue;
-      agree += same_place.samePlace(instance.pose, ranked[i].pose);
-    }
-    instance.evidence.consensus = static_cast<float>(agree) / static_cast<float>(needed);
+  for (InstancePose& instance : estimate.instances) {
+    instance.evidence.consensus =
+        consensusShare(instance.pose, estimate.base_poses, same_place, centre, separation);
   }
 }
 
@@ -277,7 +272,7 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
                       params_.instance_separation, early.begun(), threads, result.icp_steps);
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   addConsensus(model_.model, proximity_.centre(),
-               params_.instance_separation * model_.model.diameter, ranked, result.instances);
+               params_.instance_separation * model_.model.diameter, ranked, result);
   result.takeFirstInstance();
   result.seconds = secondsSince(start);
   return result;

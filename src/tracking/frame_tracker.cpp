@@ -121,7 +121,7 @@ FrameTracking FrameTracker::follow(const Frame& frame, const std::vector<FrameOb
   const double dt = begin(out, stamp, previous_input);
   std::map<std::string, std::vector<int>> merged;  // tracks that took a detected pose, by object
   if (detection && detection->generation == generation_) {
-    merged = merge(*detection, objects, params.stocs.instances);
+    merged = merge(*detection, objects, params);
   }
   const CameraIntrinsics camera = frameCamera(frame);
   Inputs in = inputs(frame, camera, objects, params);
@@ -147,14 +147,14 @@ FrameTracking FrameTracker::follow(const Frame& frame, const std::vector<FrameOb
 
 std::map<std::string, std::vector<int>> FrameTracker::merge(const FrameDetection& detection,
                                                             const std::vector<FrameObject>& objects,
-                                                            int max_instances) {
+                                                            const PipelineParams& params) {
   std::map<std::string, std::vector<int>> merged;
   for (const ObjectResult& result : detection.objects) {
     const auto object = std::find_if(objects.begin(), objects.end(),
                                      [&](const FrameObject& o) { return o.name == result.name; });
     if (object == objects.end()) continue;  // not asked for in this frame: tracks unchanged
     ObjectTracker& tracker = objects_.try_emplace(result.name, params_).first->second;
-    merged[result.name] = tracker.merge(result.estimate, *object->model, max_instances);
+    merged[result.name] = tracker.merge(result.estimate, *object->model, params);
   }
   return merged;
 }

@@ -17,15 +17,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// The accepted instances of an estimate, best first.
-std::vector<InstancePose> acceptedPoses(const PoseEstimate& estimate) {
-  std::vector<InstancePose> out;
-  for (const InstancePose& p : estimate.instances) {
-    if (p.accepted) out.push_back(p);
-  }
-  return out;
-}
-
 }  // namespace
 
 const char* toString(TrackState state) {
@@ -69,18 +60,21 @@ class ObjectTracker::Step {
     const bool scheduled = may_redetect_ && tracker_.redetectionDue();
     ++tracker_.frames_since_detection_;
     std::optional<PoseEstimate> search;  // the last one run: local, then full
+    bool moved = false;                  // a search or detection started a track or moved one
     if (detect && failed_ && params.local_search && follower_) {
       search = follower_->search();
-      assign(acceptedPoses(*search));
+      moved = assign(*search);
       out.searched = true;
     }
     if (detect && (unsettled() || scheduled)) {
       search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
                               *in_.model, *in_.params, in_.boundary, in_.camera);
       tracker_.frames_since_detection_ = 0;
-      assign(acceptedPoses(*search));
+      tracker_.confirm_detection_ = false;
+      moved = assign(*search) || moved;
       out.detected = true;
     }
+    if (moved) tracker_.confirm_detection_ = true;
     out.estimate = search ? std::move(*search) : PoseEstimate{};
     report(out);
     out.estimate.seconds = seconds_ + std::chrono::duration<double>(Clock::now() - start).count();
@@ -123,12 +117,14 @@ class ObjectTracker::Step {
     return tracker_.tracks_.empty() || std::count(settled_.begin(), settled_.end(), 0) > 0;
   }
 
-  /// Hands the accepted poses of a search or detection (best first) to the tracks.
-  void assign(const std::vector<InstancePose>& found) {
-    TrackAssignment(tracker_.tracks_, settled_, tracker_.params_, *in_.model,
-                    in_.params->stocs.instances)
-        .assign(found);
+  /// Hands the accepted poses of a search or detection (best first) to the tracks; whether one
+  /// started a track or moved one (TrackAssignment::moved).
+  bool assign(const PoseEstimate& found) {
+    TrackAssignment assignment(tracker_.tracks_, settled_, tracker_.params_, *in_.model,
+                               *in_.params);
+    assignment.assign(found);
     attempts_.resize(tracker_.tracks_.size());
+    return assignment.moved();
   }
 
   /// Unsettled tracks become lost; every track's pose of the frame goes into `out`, in index order.
@@ -204,16 +200,19 @@ bool ObjectTracker::untracked() const {
 }
 
 std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const PreparedModel& model,
-                                      int max_instances) {
+                                      const PipelineParams& params) {
   frames_since_detection_ = 0;
   std::vector<char> settled;
   for (const Track& t : tracks_) settled.push_back(t.state != TrackState::kLost);
-  return TrackAssignment(tracks_, settled, params_, model, max_instances)
-      .assign(acceptedPoses(detection));
+  TrackAssignment assignment(tracks_, settled, params_, model, params);
+  std::vector<int> taken = assignment.assign(detection);
+  confirm_detection_ = assignment.moved();
+  return taken;
 }
 
 bool ObjectTracker::redetectionDue() const {
-  return params_.redetect_every > 0 && frames_since_detection_ + 1 >= params_.redetect_every;
+  return confirm_detection_ ||
+         (params_.redetect_every > 0 && frames_since_detection_ + 1 >= params_.redetect_every);
 }
 
 }  // namespace stocs

@@ -1,15 +1,30 @@
 #include "track_assignment.h"
 
+#include <algorithm>
+
+#include "stocs/estimation/base_consensus.h"
+
 namespace stocs {
 
 TrackAssignment::TrackAssignment(std::vector<Track>& tracks, std::vector<char>& settled,
                                  const TrackingParams& params, const PreparedModel& model,
-                                 int max_instances)
+                                 const PipelineParams& pipeline)
     : tracks_(tracks),
       settled_(settled),
       reach_(params.match_distance * model.model.diameter),
-      max_instances_(max_instances),
-      extent_(model.model) {}
+      max_instances_(pipeline.stocs.instances),
+      extent_(model.model),
+      confidence_(pipeline.confidence),
+      same_place_(model.model, pipeline.stocs.instance_separation * model.model.diameter),
+      separation_(pipeline.stocs.instance_separation * model.model.diameter) {}
+
+float TrackAssignment::challenged(int k) const {
+  ConfidenceEvidence evidence = tracks_[k].pose.evidence;
+  evidence.consensus =
+      std::max(evidence.consensus, consensusShare(tracks_[k].pose.pose, *base_poses_, same_place_,
+                                                  extent_.centre(), separation_));
+  return confidence_.confidence(evidence);
+}
 
 /// The track whose pose's model centre is nearest `pose`'s within the match distance, among those
 /// `claimed` leaves free, or -1.
@@ -39,6 +54,7 @@ int TrackAssignment::placeFor(const InstancePose& pose, const std::vector<char>&
     tracks_.push_back({static_cast<int>(tracks_.size()), TrackState::kRedetected, pose,
                        ConstantVelocity(extent_.centre())});
     settled_.push_back(0);
+    moved_ = true;
     return static_cast<int>(tracks_.size()) - 1;
   }
   int weakest = -1;
@@ -48,14 +64,16 @@ int TrackAssignment::placeFor(const InstancePose& pose, const std::vector<char>&
       weakest = static_cast<int>(k);
     }
   }
-  return weakest >= 0 && tracks_[weakest].pose.confidence < pose.confidence ? weakest : -1;
+  return weakest >= 0 && challenged(weakest) < pose.confidence ? weakest : -1;
 }
 
-std::vector<int> TrackAssignment::assign(const std::vector<InstancePose>& found) {
+std::vector<int> TrackAssignment::assign(const PoseEstimate& found) {
+  base_poses_ = &found.base_poses;
   std::vector<int> taken;
   std::vector<char> claimed(tracks_.size(), 0);
   std::vector<const InstancePose*> unmatched;
-  for (const InstancePose& pose : found) {
+  for (const InstancePose& pose : found.instances) {
+    if (!pose.accepted) continue;
     const int k = nearestTrack(pose, claimed);
     if (k < 0) {
       unmatched.push_back(&pose);
@@ -64,7 +82,7 @@ std::vector<int> TrackAssignment::assign(const std::vector<InstancePose>& found)
     claimed[k] = 1;
     // A settled track keeps its tracked pose unless the confidence prefers the detection: the
     // same place turned otherwise (a mug's handle) is no other track, but may be the right pose.
-    if (!settled_[k] || pose.confidence > tracks_[k].pose.confidence) {
+    if (!settled_[k] || pose.confidence > challenged(k)) {
       take(k, pose);
       taken.push_back(k);
     }
@@ -82,6 +100,7 @@ std::vector<int> TrackAssignment::assign(const std::vector<InstancePose>& found)
 
 void TrackAssignment::take(int k, const InstancePose& pose) {
   Track& track = tracks_[k];
+  moved_ = moved_ || !same_place_.samePlace(track.pose.pose, pose.pose);
   track.pose = pose;
   track.state = TrackState::kRedetected;
   track.motion.stop();  // a detection says nothing of the motion

@@ -3,10 +3,14 @@
 // pose continues its nearest track (TrackingParams::match_distance); a settled track (one holding
 // an accepted pose of this frame) keeps it unless the confidence prefers the detection; the other
 // poses go to a track without a pose, a new track while there is room (StocsParams::instances), or
-// replace the settled track with the lowest confidence when they have a higher one.
+// replace the settled track with the lowest confidence when they have a higher one. A settled
+// pose is compared with its consensus among the detection's bases: a followed pose has no bases of
+// its own, and its zero consensus would let any detection win.
 
 #include <vector>
 
+#include "stocs/estimation/instance_separation.h"
+#include "stocs/estimation/pipeline.h"
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/tracking/object_tracker.h"
 
@@ -17,21 +21,33 @@ class TrackAssignment {
   /// `settled`: per track, whether it holds an accepted pose of this frame; grows with the tracks
   /// and marks those the assignment takes. Both vectors must outlive the assignment.
   TrackAssignment(std::vector<Track>& tracks, std::vector<char>& settled,
-                  const TrackingParams& params, const PreparedModel& model, int max_instances);
+                  const TrackingParams& params, const PreparedModel& model,
+                  const PipelineParams& pipeline);
 
-  /// Hands out `found` (accepted poses, best first); the indices of the tracks that took one.
-  std::vector<int> assign(const std::vector<InstancePose>& found);
+  /// Hands out the accepted poses of `found` (best first); the indices of the tracks that took
+  /// one.
+  std::vector<int> assign(const PoseEstimate& found);
+  /// Whether a pose assigned so far started a track or moved one to another place (up to
+  /// symmetries): a single detection there is to be confirmed by the next.
+  bool moved() const { return moved_; }
 
  private:
   int nearestTrack(const InstancePose& pose, const std::vector<char>& claimed) const;
   int placeFor(const InstancePose& pose, const std::vector<char>& claimed);
   void take(int k, const InstancePose& pose);
+  /// Track k's confidence with its consensus among the bases of the poses being assigned.
+  float challenged(int k) const;
 
   std::vector<Track>& tracks_;
   std::vector<char>& settled_;
   float reach_;  // the match distance in metres
   int max_instances_;
   PoseProximity extent_;
+  const ConfidenceParams& confidence_;
+  InstanceSeparation same_place_;
+  float separation_;                                            // of instances, in metres
+  const std::vector<Eigen::Isometry3f>* base_poses_ = nullptr;  // of the poses being assigned
+  bool moved_ = false;
 };
 
 }  // namespace stocs

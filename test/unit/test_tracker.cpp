@@ -81,10 +81,12 @@ TEST_F(TrackerTest, APerturbedFrameIsTrackedFromThePrediction) {
   ASSERT_EQ(first.objects[0].states, std::vector<TrackState>{TrackState::kRedetected});
   EXPECT_TRUE(first.objects[0].detected);
   EXPECT_EQ(first.counts.redetected, 1);
+  // A new track is confirmed by a second detection on the next frame.
+  EXPECT_TRUE(track(tracker, frameAt(truth_), kFramePeriod).objects[0].detected);
 
   // The object moved 6 mm and turned 4 degrees by the next frame.
   const Eigen::Isometry3f next = moved(truth_, 6, 4);
-  const FrameTracking second = track(tracker, frameAt(next), kFramePeriod);
+  const FrameTracking second = track(tracker, frameAt(next), 2 * kFramePeriod);
   const TrackedObject& o = second.objects[0];
   ASSERT_EQ(o.states, std::vector<TrackState>{TrackState::kTracked});
   EXPECT_FALSE(o.detected);
@@ -159,10 +161,11 @@ TEST_F(TrackerTest, ScheduledDetectionMovesATrackOffALookAlike) {
     return t.objects.at(0).result.estimate.instances.at(0);
   };
   ASSERT_LT(adds(poseAt(track(tracker, both, 0.0)).pose, faint), 0.05 * model_->model.diameter);
-  const FrameTracking held = track(tracker, look_alike, kFramePeriod);
+  ASSERT_TRUE(track(tracker, both, kFramePeriod).objects[0].detected);  // the confirmation
+  const FrameTracking held = track(tracker, look_alike, 2 * kFramePeriod);
   ASSERT_EQ(held.objects[0].states[0], TrackState::kTracked);  // accepted where it was
   EXPECT_LT(adds(poseAt(held).pose, faint), 0.05 * model_->model.diameter);
-  const FrameTracking checked = track(tracker, look_alike, 2 * kFramePeriod);
+  const FrameTracking checked = track(tracker, look_alike, 3 * kFramePeriod);
   ASSERT_TRUE(checked.objects[0].detected);
   EXPECT_EQ(checked.objects[0].states[0], TrackState::kRedetected);
   EXPECT_LT(adds(poseAt(checked).pose, strong), 0.05 * model_->model.diameter);
@@ -253,7 +256,8 @@ TEST_F(TrackerTest, DetectionRunsOnScheduleWhileTracked) {
     detected.push_back(t.objects[0].detected);
     EXPECT_EQ(t.objects[0].result.estimate.instances.size(), 1u);  // one track, index 0
   }
-  EXPECT_EQ(detected, (std::vector<bool>{true, false, true, false, true}));
+  // Frame 1 confirms the new track, then every second frame.
+  EXPECT_EQ(detected, (std::vector<bool>{true, true, false, true, false}));
 }
 
 TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
@@ -269,9 +273,10 @@ TEST_F(TrackerTest, OneScheduledDetectionAFrame) {
     first.push_back(t.objects.at(0).detected);
     second.push_back(t.objects.at(1).detected);
   }
-  // Both are due on frame 2: the first object detects there, the second one frame later.
-  EXPECT_EQ(first, (std::vector<bool>{true, false, true, false, true}));
-  EXPECT_EQ(second, (std::vector<bool>{true, false, false, true, false}));
+  // Both new tracks are to be confirmed on frame 1: the first object detects there, the second
+  // one frame later; then each every second frame.
+  EXPECT_EQ(first, (std::vector<bool>{true, true, false, true, false}));
+  EXPECT_EQ(second, (std::vector<bool>{true, false, true, false, true}));
 }
 
 /// The poses of every object over three frames of a moving block, `threads` following at once.
@@ -305,12 +310,18 @@ TEST_F(TrackerTest, ObjectsFollowedInParallelMatchThoseFollowedInTurn) {
     EXPECT_TRUE(actual[k].isApprox(expected[k], 1e-6f)) << k;
 }
 
-/// An accepted pose with `confidence`, for merging.
-PoseEstimate detectionOf(const Eigen::Isometry3f& pose, float confidence) {
+/// A detection of one accepted pose with `evidence` (and its confidence) whose bases all found
+/// `bases_at`, for merging.
+PoseEstimate detectionOf(const Eigen::Isometry3f& pose, ConfidenceEvidence evidence,
+                         const Eigen::Isometry3f& bases_at, const ConfidenceParams& params) {
   PoseEstimate e;
+  e.base_poses.assign(ConfidenceEvidence::kConsensusBases, bases_at);
   InstancePose p;
   p.pose = pose;
-  p.confidence = confidence;
+  evidence.consensus = 1;
+  p.evidence = evidence;
+  p.confidence = params.confidence(evidence);
+  p.accepted = true;
   e.instances.push_back(p);
   e.takeFirstInstance();
   return e;
@@ -320,29 +331,42 @@ TEST_F(TrackerTest, AMergedDetectionReplacesATrackedPoseOnlyWhenPreferred) {
   ObjectTracker tracker{TrackingParams{}};
   const Frame frame = frameAt(truth_);
   const CameraIntrinsics camera = frameCamera(frame);  // the input points to it
-  const ObjectInput in = objectInput(frame, camera, {"block", model_.get()}, estimator_.params());
+  const PipelineParams& params = estimator_.params();
+  const ObjectInput in = objectInput(frame, camera, {"block", model_.get()}, params);
   tracker.update(in, 0.0);
   tracker.update(in, kFramePeriod);
   ASSERT_EQ(tracker.tracks().at(0).state, TrackState::kTracked);
-  const float held = tracker.tracks()[0].pose.confidence;
+  const ConfidenceEvidence held = tracker.tracks()[0].pose.evidence;
+  ASSERT_EQ(held.consensus, 0.0f);  // a followed pose has no bases of its own
   const Eigen::Isometry3f before = tracker.tracks()[0].pose.pose;
   const Eigen::Isometry3f near = moved(truth_, 3, 0);  // the track's place
   Eigen::Isometry3f far = truth_;
   far.translation().x() += model_->model.diameter;  // beyond the match distance
-  // One instance: a detection the confidence does not prefer leaves the tracked pose alone,
-  // at the track's place or elsewhere.
-  EXPECT_TRUE(tracker.merge(detectionOf(near, held - 0.1f), *model_, 1).empty());
-  EXPECT_TRUE(tracker.merge(detectionOf(far, held - 0.1f), *model_, 1).empty());
+  ConfidenceEvidence worse = held;                  // less of the surface confirmed
+  worse.surface_confirmed *= 0.8f;
+  // At the track's place, with bases that agree with the tracked pose as well: its confidence is
+  // higher than the tracked pose's only through the consensus, which the tracked pose shares.
+  const PoseEstimate same_place = detectionOf(near, worse, near, params.confidence);
+  ASSERT_GT(same_place.instances[0].confidence, tracker.tracks()[0].pose.confidence);
+  EXPECT_TRUE(tracker.merge(same_place, *model_, params).empty());
+  // Elsewhere, with bases that found the tracked pose: not preferred either.
+  EXPECT_TRUE(
+      tracker.merge(detectionOf(far, worse, truth_, params.confidence), *model_, params).empty());
   EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(before));
   EXPECT_EQ(tracker.tracks()[0].state, TrackState::kTracked);
-  // Preferred: it replaces the pose, as a detection of the track (its index stays, no motion).
-  EXPECT_EQ(tracker.merge(detectionOf(far, held + 0.05f), *model_, 1), std::vector<int>{0});
+  // Elsewhere, as good on the evidence and backed by every base: it replaces the pose, as a
+  // detection of the track (its index stays, no motion).
+  EXPECT_EQ(tracker.merge(detectionOf(far, held, far, params.confidence), *model_, params),
+            std::vector<int>{0});
   ASSERT_EQ(tracker.tracks().size(), 1u);
   EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(far));
   EXPECT_EQ(tracker.tracks()[0].state, TrackState::kRedetected);
   EXPECT_EQ(tracker.tracks()[0].motion.linear().norm(), 0.0f);
   // Room for a second instance: a pose elsewhere starts a new track and the first one stays.
-  EXPECT_EQ(tracker.merge(detectionOf(truth_, 0.5f), *model_, 2), std::vector<int>{1});
+  PipelineParams two = params;
+  two.stocs.instances = 2;
+  EXPECT_EQ(tracker.merge(detectionOf(truth_, worse, truth_, params.confidence), *model_, two),
+            std::vector<int>{1});
   ASSERT_EQ(tracker.tracks().size(), 2u);
   EXPECT_EQ(tracker.tracks()[1].index, 1);
   EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(far));
@@ -368,12 +392,17 @@ TEST_F(TrackerTest, FollowingOnlyLosesAFailedTrackAndAMergedDetectionFindsItAgai
   EXPECT_EQ(found.counts.detections, 1);
   EXPECT_LT(adds(found.objects[0].result.estimate.instances.at(0).pose, next),
             0.02 * model_->model.diameter);
-  EXPECT_TRUE(tracker.detectionWanted(objects).empty());  // tracked, schedule not due
+  // The new track's confirmation is wanted; once merged, tracked with the schedule not due.
+  ASSERT_EQ(tracker.detectionWanted(objects).size(), 1u);
+  const FrameDetection confirmation{tracker.generation(),
+                                    estimateFrame(frameAt(next), objects, params)};
+  tracker.follow(frameAt(next), objects, params, 2 * kFramePeriod, std::nullopt, &confirmation);
+  EXPECT_TRUE(tracker.detectionWanted(objects).empty());
   const FrameTracking tracked =
-      tracker.follow(frameAt(next), objects, params, 2 * kFramePeriod, std::nullopt, nullptr);
+      tracker.follow(frameAt(next), objects, params, 3 * kFramePeriod, std::nullopt, nullptr);
   EXPECT_EQ(tracked.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
   // The map vanishes: lost at once (no detection in the frame), and detection is wanted.
-  const FrameTracking gone = tracker.follow(frameAt(next, false), objects, params, 3 * kFramePeriod,
+  const FrameTracking gone = tracker.follow(frameAt(next, false), objects, params, 4 * kFramePeriod,
                                             std::nullopt, nullptr);
   EXPECT_EQ(gone.objects[0].states, std::vector<TrackState>{TrackState::kLost});
   EXPECT_FALSE(gone.objects[0].detected);
@@ -403,8 +432,7 @@ TEST_F(TrackerTest, OneScheduledDetectionIsWantedAtATime) {
   frame.probabilities["copy"] = frame.probabilities["block"];
   frame.probabilities["new"] = frame.probabilities["block"];
   const std::vector<FrameObject> both = {{"block", model_.get()}, {"copy", model_.get()}};
-  tracker.track(frame, both, estimator_.params(), 0.0);
-  tracker.track(frame, both, estimator_.params(), kFramePeriod);  // both due now
+  tracker.track(frame, both, estimator_.params(), 0.0);  // both new tracks to be confirmed now
   std::vector<FrameObject> objects = both;
   objects.push_back({"new", model_.get()});  // no track: always wanted
   std::vector<std::string> wanted;

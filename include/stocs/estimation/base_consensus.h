@@ -50,4 +50,13 @@ class BaseConsensus {
   signed char best_accepted_ = -1;  // accept_ of the best: -1 not yet asked, 0 no, 1 yes
 };
 
+/// ConfidenceEvidence::consensus of `pose`: of `base_poses` (the bases' poses, best first), those
+/// in the same place up to symmetries (`same_place`), at most kConsensusBases, as a share of
+/// kConsensusBases. A base whose model centre (`centre`, in the model frame) lies `separation`
+/// metres or more from the pose's is skipped without the ADD-S test.
+float consensusShare(const Eigen::Isometry3f& pose,
+                     const std::vector<Eigen::Isometry3f>& base_poses,
+                     const InstanceSeparation& same_place, const Eigen::Vector3f& centre,
+                     float separation);
+
 }  // namespace stocs

@@ -134,6 +134,9 @@ struct PoseEstimate {
   /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
   /// above.
   std::vector<InstancePose> instances;
+  /// The best pose of each base that found one, best objective first (StoCS only): the consensus
+  /// evidence of a pose found otherwise (a followed one) is counted among them.
+  std::vector<Eigen::Isometry3f> base_poses;
   size_t segment_points = 0;   ///< points of the segment the method registered against
   int bases_tried = 0;         ///< bases started within the budget and before consensus
   int bases_sampled = 0;       ///< of those, bases actually drawn

@@ -96,7 +96,7 @@ class FrameTracker {
   /// The tracks that took a pose of `detection`, by object name.
   std::map<std::string, std::vector<int>> merge(const FrameDetection& detection,
                                                 const std::vector<FrameObject>& objects,
-                                                int max_instances);
+                                                const PipelineParams& params);
 
   TrackingParams params_;
   std::map<std::string, ObjectTracker> objects_;

@@ -69,7 +69,7 @@ class ObjectTracker {
   /// thread), and returns the frame's outcome. Only after follow().
   ObjectTracking conclude();
   /// Whether the schedule (TrackingParams::redetect_every) asks for full detection in the next
-  /// frame.
+  /// frame, or the last detection, having started or moved a track, is to be confirmed there.
   bool redetectionDue() const;
 
   /// For a caller that detects in the background (StreamTracker): follows the live tracks and
@@ -81,9 +81,9 @@ class ObjectTracker {
   /// Hands the accepted poses of a full detection (of this or an earlier frame) to the tracks as
   /// a frame's detection does, the tracks that are not lost counting as settled (a detection the
   /// confidence prefers replaces one), and restarts the schedule; the indices of the tracks that
-  /// took a pose. `max_instances`: StocsParams::instances.
+  /// took a pose.
   std::vector<int> merge(const PoseEstimate& detection, const PreparedModel& model,
-                         int max_instances);
+                         const PipelineParams& params);
 
   const std::vector<Track>& tracks() const { return tracks_; }
 
@@ -92,6 +92,9 @@ class ObjectTracker {
   TrackingParams params_;
   std::vector<Track> tracks_;  // by index: indices are 0, 1, ... in order of first detection
   int frames_since_detection_ = 0;
+  /// The last detection started a track or moved one: the next frame detects again, as a single
+  /// detection may land on a look-alike that following would then keep.
+  bool confirm_detection_ = false;
   std::unique_ptr<Step> step_;  // between follow() and conclude()
 };
 
