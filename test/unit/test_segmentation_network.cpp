@@ -99,6 +99,27 @@ TEST(SegmentationNetwork, SmallerOutputScaledToTheImage) {
   expectMaps(SegmentationNetwork(p).segment(image), {1.0, 0.2, 0.0}, image.size());
 }
 
+TEST(SegmentationNetwork, UpsamplePicksChannelsInOrderAsFloatOrBytes) {
+  const SegmentationNetwork net(passThrough());
+  const cv::Mat image = uniform(64, 48, 0, 51, 255);  // channels 1.0, 0.2, 0.0
+  const cv::Mat maps = net.outputMaps(image);
+  EXPECT_EQ(maps.type(), CV_32FC3);
+  EXPECT_EQ(maps.size(), cv::Size(16, 12));
+  cv::Mat floats;
+  SegmentationNetwork::upsample(maps, {2, 0}, image.size(), CV_32F, floats);
+  ASSERT_EQ(floats.type(), CV_32FC2);
+  ASSERT_EQ(floats.size(), image.size());
+  EXPECT_NEAR(floats.at<cv::Vec2f>(20, 30)[0], 0.0, 1e-6);
+  EXPECT_NEAR(floats.at<cv::Vec2f>(20, 30)[1], 1.0, 1e-6);
+  // Into a buffer the caller owns (a message's data), as 8-bit round(255 p).
+  std::vector<uint8_t> buffer(64 * 48 * 3);
+  cv::Mat bytes(image.size(), CV_8UC3, buffer.data());
+  SegmentationNetwork::upsample(maps, {1, 0, 2}, image.size(), CV_8U, bytes);
+  ASSERT_EQ(bytes.data, buffer.data()) << "the caller's buffer was replaced";
+  EXPECT_EQ(bytes.at<cv::Vec3b>(0, 0), cv::Vec3b(51, 255, 0));
+  EXPECT_EQ(bytes.at<cv::Vec3b>(47, 63), cv::Vec3b(51, 255, 0));
+}
+
 TEST(SegmentationNetwork, ChannelOfObject) {
   Params p = passThrough();
   EXPECT_EQ(p.channelOf("2"), 2);
