@@ -3,6 +3,7 @@
 // every bad model or image named.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 
@@ -150,6 +151,66 @@ TEST(SegmentationNetwork, BadModelsAndConfigurationsNamed) {
   Params wide = passThrough();
   wide.input_width = 0;
   EXPECT_NE(errorOf(wide).find("input_width"), std::string::npos);
+}
+
+/// A settings file with `text` in the scratch folder, beside a copy of the pass-through model.
+std::string settingsFile(const std::string& text) {
+  const auto dir = test::scratchDir("segmentation_settings");
+  std::filesystem::copy_file("test/data/segmentation/pass_through.onnx", dir / "net.onnx",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "net.yaml") << text;
+  return (dir / "net.yaml").string();
+}
+
+std::string settingsError(const std::string& text) {
+  try {
+    SegmentationNetworkParams::fromFile(settingsFile(text));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SegmentationNetwork, SettingsFileReadThroughTheSchema) {
+  const std::string file = settingsFile(
+      "model: net.onnx  # beside the file\ninput_width: 16\ninput_height: 12\n"
+      "resize: letterbox\nchannel_order: bgr\nmean_0: 40\nscale: 0.01\noutput: probabilities\n"
+      "classes: 3\nchannels: ['-', '2', '1']\nthreads: 1\n");
+  const Params p = SegmentationNetworkParams::fromFile(file);
+  EXPECT_EQ(p.model, (std::filesystem::path(file).parent_path() / "net.onnx").string());
+  EXPECT_EQ(p.resize, Params::Resize::kLetterbox);
+  EXPECT_EQ(p.channel_order, Params::ChannelOrder::kBgr);
+  EXPECT_EQ(p.output, Params::Output::kProbabilities);
+  EXPECT_EQ(p.activation, Params::Activation::kSoftmax);  // the default
+  EXPECT_FLOAT_EQ(p.mean_0, 40);
+  EXPECT_EQ(p.channelOf("1"), 2);
+  expectMaps(SegmentationNetwork(p).segment(uniform(16, 12, 50, 100, 150)), {0.1, 1.0, 1.0},
+             cv::Size(16, 12));
+}
+
+TEST(SegmentationNetwork, SettingsFileMistakesNamed) {
+  const std::string good = "model: net.onnx\nclasses: 3\n";
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {good + "input_widht: 16\n", "net.yaml:3: input_widht: unknown key"},
+           {good + "input_width: 0\n", "net.yaml:3: input_width: 0 px is outside [8, 8192]"},
+           {good + "input_width: wide\n",
+            "net.yaml:3: input_width: expected an integer, got 'wide'"},
+           {good + "resize: crop\n", "net.yaml:3: resize: 'crop' is not one of stretch, letterbox"},
+           {good + "channels: cat\n", "net.yaml:3: channels: expected a list"},
+           {good + "channels: ['-', '1']\n",
+            "net.yaml: channels names 2 channels, but classes is 3"},
+           {"classes: 3\n", "net.yaml: model is not set"},
+           {"model: package://stocs_ros/models/segmenter.onnx\n",
+            "model 'package://stocs_ros/models/segmenter.onnx' is a URL"},
+           {"[1, 2]\n", "net.yaml: expected a map of keys"},
+           {"model: [\n", "net.yaml: invalid YAML"}}) {
+    EXPECT_NE(settingsError(text).find(message), std::string::npos)
+        << text << " gave: " << settingsError(text);
+  }
+  EXPECT_NE(
+      errorOf(SegmentationNetworkParams::fromFile(settingsFile("model: net.onnx\nclasses: 7\n")))
+          .find("is not NCHW with 7 classes"),
+      std::string::npos);
 }
 
 TEST(SegmentationNetwork, BadImagesNamed) {
