@@ -30,8 +30,10 @@ class SegmentationNode {
 
  private:
   void onImage(const sensor_msgs::ImageConstPtr& msg);
-  /// The output maps (SegmentationNetwork::outputMaps) at `size` on every subscribed output.
-  void publishMaps(const std_msgs::Header& header, const cv::Mat& maps, cv::Size size);
+  /// The output maps (SegmentationNetwork::outputMaps) at `size` for every output with a
+  /// subscriber, each with its publisher.
+  std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> mapsMessages(
+      const std_msgs::Header& header, const cv::Mat& maps, cv::Size size);
   /// Subscribes to the colour image while any output has a subscriber, and only then.
   void updateSubscription();
   void publishStatistics(const ros::TimerEvent&);

@@ -111,9 +111,10 @@ void SegmentationNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   try {
     const cv::Mat bgr = colourImage(msg);
     const auto start = std::chrono::steady_clock::now();
-    publishMaps(msg->header, network_.outputMaps(bgr), bgr.size());
+    const auto messages = mapsMessages(msg->header, network_.outputMaps(bgr), bgr.size());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const auto& [publisher, message] : messages) publisher->publish(message);
     std::lock_guard<std::mutex> lock(mutex_);
     ++segmented_;
     seconds_ += seconds;
@@ -125,19 +126,22 @@ void SegmentationNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
 }
 
-void SegmentationNode::publishMaps(const std_msgs::Header& header, const cv::Mat& maps,
-                                   cv::Size size) {
+std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> SegmentationNode::mapsMessages(
+    const std_msgs::Header& header, const cv::Mat& maps, cv::Size size) {
   const int depth = output_.depth == SegmentationOutputParams::Depth::kByte ? CV_8U : CV_32F;
+  std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> messages;
   if (multichannel_.getNumSubscribers() > 0) {
     std::vector<int> channels;
     for (const auto& object : objects_) channels.push_back(object.second);
-    multichannel_.publish(mapsMessage(header, maps, channels, size, depth));
+    messages.emplace_back(&multichannel_, mapsMessage(header, maps, channels, size, depth));
   }
   for (size_t i = 0; i < objects_.size(); ++i) {
     if (per_object_[i].getNumSubscribers() > 0) {
-      per_object_[i].publish(mapsMessage(header, maps, {objects_[i].second}, size, depth));
+      messages.emplace_back(&per_object_[i],
+                            mapsMessage(header, maps, {objects_[i].second}, size, depth));
     }
   }
+  return messages;
 }
 
 void SegmentationNode::rejected(const std::string& reason, const std::string& message) {
