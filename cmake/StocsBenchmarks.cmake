@@ -17,6 +17,6 @@ target_compile_definitions(stocs_segmentation_benchmarks PRIVATE
   STOCS_SEGMENTER_MODEL="${PROJECT_SOURCE_DIR}/models/segmenter.onnx")
 
 if(STOCS_CATKIN)
-  install(TARGETS stocs_scaling_benchmarks stocs_stage_benchmarks stocs_segmentation_benchmarks
+  install(TARGETS stocs_scaling_benchmarks stocs_segmentation_benchmarks stocs_stage_benchmarks
     RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()
