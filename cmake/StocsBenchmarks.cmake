@@ -10,8 +10,13 @@ foreach(name stage scaling)
   add_executable(stocs_${name}_benchmarks ${PROJECT_SOURCE_DIR}/benchmark/${name}_benchmarks.cpp)
   target_link_libraries(stocs_${name}_benchmarks PRIVATE stocs_benchmark_frames benchmark::benchmark)
 endforeach()
+# The segmentation node's stages (benchmark/segmentation_benchmarks.cpp).
+add_executable(stocs_segmentation_benchmarks ${PROJECT_SOURCE_DIR}/benchmark/segmentation_benchmarks.cpp)
+target_link_libraries(stocs_segmentation_benchmarks PRIVATE stocs_segmentation benchmark::benchmark)
+target_compile_definitions(stocs_segmentation_benchmarks PRIVATE
+  STOCS_SEGMENTER_MODEL="${PROJECT_SOURCE_DIR}/models/segmenter.onnx")
 
 if(STOCS_CATKIN)
-  install(TARGETS stocs_scaling_benchmarks stocs_stage_benchmarks
+  install(TARGETS stocs_scaling_benchmarks stocs_segmentation_benchmarks stocs_stage_benchmarks
     RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 endif()

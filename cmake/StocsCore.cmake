@@ -32,7 +32,7 @@ function(stocs_add_module module)
   set_property(GLOBAL APPEND PROPERTY STOCS_CORE_MODULES ${target})
 endfunction()
 
-stocs_add_module(util PUBLIC Eigen3::Eigen fmt::fmt)
+stocs_add_module(util PUBLIC Eigen3::Eigen fmt::fmt PRIVATE yaml-cpp)
 stocs_add_module(geometry PUBLIC stocs_util opencv_core)
 # knn_index.h, a public header, wraps nanoflann (header-only); the path is for the build tree only.
 #catkin_lint: ignore_once EXTERNAL_INTERFACE_PATH

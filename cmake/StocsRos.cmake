@@ -10,7 +10,6 @@ set(STOCS_ROS_EXPORTED_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime)
 list(SORT STOCS_ROS_BUILD_COMPONENTS)
 list(SORT STOCS_ROS_EXPORTED_DEPENDS)
 find_package(catkin REQUIRED COMPONENTS ${STOCS_ROS_BUILD_COMPONENTS})
-find_package(yaml-cpp REQUIRED)
 
 add_message_files(DIRECTORY msg FILES Detection2D.msg Detection2DArray.msg InstanceMask.msg
   InstanceMaskArray.msg ObjectPose.msg ObjectPoseArray.msg RejectedObject.msg)

@@ -81,6 +81,11 @@ add_rostest(test/ros/synth_scene_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_segmentation_node segmentation_node stocs_ros_test_data)
+# The same checks on stocs_ros/SegmentationNodelet in a manager, and on the node's 8-bit maps.
+add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA} nodelet:=true
+  DEPENDENCIES test_segmentation_node stocs_ros_nodelet stocs_ros_test_data)
+add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA} depth:=8U
+  DEPENDENCIES test_segmentation_node segmentation_node stocs_ros_test_data)
 # The same scene with maps from the package's segmentation network (segmentation_node).
 add_rostest(test/ros/network_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_scene_poses segmentation_node ${STOCS_ROS_TEST_DEPENDS})

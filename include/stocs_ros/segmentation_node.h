@@ -3,9 +3,10 @@
 // on a colour image stream and publishes the per-object probability maps the StoCS node takes, as
 // one multi-channel 32FC<n> image (~probability, the objects of ~channels in order) and, while
 // subscribed, one 32FC1 image per object (~probability/<object>), each with the colour image's
-// header. Lazy: it subscribes to the colour image only while one of its outputs has a subscriber.
-// A bad image is counted and logged (throttled), never fatal; a bad configuration or model ends
-// the start with stocs::InputError. docs/ros.md, "Segmentation node".
+// header (8UC<n> and 8UC1 with ~probability_depth 8U). Lazy: it subscribes to the colour image only
+// while one of its outputs has a subscriber. A bad image is counted and logged (throttled), never
+// fatal; a bad configuration or model ends the start with stocs::InputError. docs/ros.md,
+// "Segmentation node".
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <image_transport/image_transport.h>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "stocs/segmentation/segmentation_network.h"
+#include "stocs_ros/segmentation_output_params.h"
 
 namespace stocs_ros {
 
@@ -28,7 +30,10 @@ class SegmentationNode {
 
  private:
   void onImage(const sensor_msgs::ImageConstPtr& msg);
-  void publishMaps(const std_msgs::Header& header, const std::vector<cv::Mat>& maps);
+  /// The output maps (SegmentationNetwork::outputMaps) at `size` for every output with a
+  /// subscriber, each with its publisher.
+  std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> mapsMessages(
+      const std_msgs::Header& header, const cv::Mat& maps, cv::Size size);
   /// Subscribes to the colour image while any output has a subscriber, and only then.
   void updateSubscription();
   void publishStatistics(const ros::TimerEvent&);
@@ -37,6 +42,7 @@ class SegmentationNode {
   ros::NodeHandle pnh_;
   image_transport::ImageTransport transport_;
   stocs::SegmentationNetwork network_;
+  SegmentationOutputParams output_;
   std::vector<std::pair<std::string, int>> objects_;  ///< name and output channel, in order
   image_transport::Subscriber image_;
   ros::Publisher multichannel_;

@@ -7,6 +7,7 @@
 #include "stocs/segmentation/segmentation_network_params.h"
 #include "stocs/util/param_docs.h"
 #include "stocs_ros/node_config.h"
+#include "stocs_ros/segmentation_output_params.h"
 
 namespace stocs_ros {
 namespace {
@@ -64,6 +65,16 @@ The estimation keys are also options of `stocs estimate`, `stocs bench` and `sto
 
 )";
 
+/// The segmentation node's private parameters: the network's, then how it publishes the maps.
+stocs::DescribedParams segmentationNodeKeys() {
+  stocs::DescribedParams keys =
+      stocs::SegmentationNetworkParams::schema().describe(stocs::SegmentationNetworkParams());
+  for (auto& key : SegmentationOutputParams::schema().describe(SegmentationOutputParams())) {
+    keys.push_back(std::move(key));
+  }
+  return keys;
+}
+
 }  // namespace
 
 std::string defaultConfigYaml() {
@@ -91,9 +102,7 @@ std::string parametersMarkdown() {
                             "estimation.", true),
       stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(stocs::TrackingParams()),
                             "tracking.", true),
-      stocs::paramsMarkdown(
-          stocs::SegmentationNetworkParams::schema().describe(stocs::SegmentationNetworkParams()),
-          "", false));
+      stocs::paramsMarkdown(segmentationNodeKeys(), "", false));
 }
 
 }  // namespace stocs_ros

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <boost/make_shared.hpp>
 #include <chrono>
 #include <opencv2/core.hpp>
 
@@ -49,14 +50,29 @@ cv::Mat colourImage(const sensor_msgs::ImageConstPtr& msg) {
                                msg->encoding));
 }
 
-sensor_msgs::ImagePtr imageMessage(const std_msgs::Header& header, const cv::Mat& image) {
-  return cv_bridge::CvImage(header, fmt::format("32FC{}", image.channels()), image).toImageMsg();
+/// The channels `channels` of the network's output maps, upsampled straight into a message's
+/// buffer: no full-size image is copied on the way.
+sensor_msgs::ImagePtr mapsMessage(const std_msgs::Header& header, const cv::Mat& maps,
+                                  const std::vector<int>& channels, cv::Size size, int depth) {
+  auto msg = boost::make_shared<sensor_msgs::Image>();
+  msg->header = header;
+  msg->height = size.height;
+  msg->width = size.width;
+  const int type = CV_MAKETYPE(depth, static_cast<int>(channels.size()));
+  msg->encoding = fmt::format("{}C{}", depth == CV_8U ? "8U" : "32F", channels.size());
+  msg->is_bigendian = false;
+  msg->step = size.width * CV_ELEM_SIZE(type);
+  msg->data.resize(static_cast<size_t>(msg->step) * size.height);
+  cv::Mat view(size, type, msg->data.data(), msg->step);
+  stocs::SegmentationNetwork::upsample(maps, channels, size, depth, view);
+  return msg;
 }
 
 }  // namespace
 
 SegmentationNode::SegmentationNode(ros::NodeHandle pnh)
     : pnh_(pnh), transport_(pnh), network_(networkParams(pnh)) {
+  readSchemaParams(pnh_, SegmentationOutputParams::schema(), output_);
   const auto& channels = network_.params().channels;
   for (size_t c = 0; c < channels.size(); ++c) {
     if (channels[c] != "-") objects_.emplace_back(channels[c], static_cast<int>(c));
@@ -95,10 +111,10 @@ void SegmentationNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   try {
     const cv::Mat bgr = colourImage(msg);
     const auto start = std::chrono::steady_clock::now();
-    const std::vector<cv::Mat> maps = network_.segment(bgr);
+    const auto messages = mapsMessages(msg->header, network_.outputMaps(bgr), bgr.size());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    publishMaps(msg->header, maps);
+    for (const auto& [publisher, message] : messages) publisher->publish(message);
     std::lock_guard<std::mutex> lock(mutex_);
     ++segmented_;
     seconds_ += seconds;
@@ -110,20 +126,22 @@ void SegmentationNode::onImage(const sensor_msgs::ImageConstPtr& msg) {
   }
 }
 
-void SegmentationNode::publishMaps(const std_msgs::Header& header,
-                                   const std::vector<cv::Mat>& maps) {
+std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> SegmentationNode::mapsMessages(
+    const std_msgs::Header& header, const cv::Mat& maps, cv::Size size) {
+  const int depth = output_.depth == SegmentationOutputParams::Depth::kByte ? CV_8U : CV_32F;
+  std::vector<std::pair<ros::Publisher*, sensor_msgs::ImagePtr>> messages;
   if (multichannel_.getNumSubscribers() > 0) {
-    std::vector<cv::Mat> planes;
-    for (const auto& object : objects_) planes.push_back(maps[object.second]);
-    cv::Mat merged;
-    cv::merge(planes, merged);
-    multichannel_.publish(imageMessage(header, merged));
+    std::vector<int> channels;
+    for (const auto& object : objects_) channels.push_back(object.second);
+    messages.emplace_back(&multichannel_, mapsMessage(header, maps, channels, size, depth));
   }
   for (size_t i = 0; i < objects_.size(); ++i) {
     if (per_object_[i].getNumSubscribers() > 0) {
-      per_object_[i].publish(imageMessage(header, maps[objects_[i].second]));
+      messages.emplace_back(&per_object_[i],
+                            mapsMessage(header, maps, {objects_[i].second}, size, depth));
     }
   }
+  return messages;
 }
 
 void SegmentationNode::rejected(const std::string& reason, const std::string& message) {

@@ -124,6 +124,13 @@ const SegmentationNetworkParams& SegmentationNetwork::params() const {
 }
 
 std::vector<cv::Mat> SegmentationNetwork::segment(const cv::Mat& bgr) const {
+  const cv::Mat maps = outputMaps(bgr);
+  std::vector<cv::Mat> planes(maps.channels());
+  for (int c = 0; c < maps.channels(); ++c) upsample(maps, {c}, bgr.size(), CV_32F, planes[c]);
+  return planes;
+}
+
+cv::Mat SegmentationNetwork::outputMaps(const cv::Mat& bgr) const {
   if (bgr.empty() || bgr.type() != CV_8UC3) {
     throw InputError(
         fmt::format("segmentation input: expected a non-empty 8-bit 3-channel image, "
@@ -133,12 +140,7 @@ std::vector<cv::Mat> SegmentationNetwork::segment(const cv::Mat& bgr) const {
   const Params& p = impl_->params;
   const cv::Mat blob = impl_->forward(bgr);
   impl_->checkOutput(blob);
-  std::vector<cv::Mat> planes = outputChannels(blob);
-  for (cv::Mat& m : planes) m = m.clone();
-  if (p.output == Params::Output::kLogits) {
-    p.activation == Params::Activation::kSoftmax ? softmax(planes) : sigmoid(planes);
-  }
-  // The image's part of the output, which may be smaller than the input, back at the image's size.
+  // The image's part of the output, which may be smaller than the input.
   const cv::Rect area = imageArea(p, bgr.size());
   const double sx = static_cast<double>(blob.size[3]) / p.input_width;
   const double sy = static_cast<double>(blob.size[2]) / p.input_height;
@@ -146,15 +148,46 @@ std::vector<cv::Mat> SegmentationNetwork::segment(const cv::Mat& bgr) const {
       cv::Rect(cvRound(area.x * sx), cvRound(area.y * sy), std::max(1, cvRound(area.width * sx)),
                std::max(1, cvRound(area.height * sy))) &
       cv::Rect(0, 0, blob.size[3], blob.size[2]);
+  std::vector<cv::Mat> planes = outputChannels(blob);
+  for (cv::Mat& m : planes) m = m(out_area).clone();
+  if (p.output == Params::Output::kLogits) {
+    p.activation == Params::Activation::kSoftmax ? softmax(planes) : sigmoid(planes);
+  }
   for (cv::Mat& m : planes) {
     if (cv::checkRange(m, true) == false) {
       throw InputError(fmt::format("segmentation model {}: output holds NaN or infinity", p.model));
     }
-    cv::Mat full;
-    cv::resize(m(out_area), full, bgr.size(), 0, 0, cv::INTER_LINEAR);
-    m = cv::min(cv::max(full, 0.0), 1.0);
+    // Clamped here, at the output's size: bilinear upsampling keeps values in [0, 1].
+    cv::min(m, 1.0, m);
+    cv::max(m, 0.0, m);
   }
-  return planes;
+  cv::Mat maps;
+  cv::merge(planes, maps);
+  return maps;
+}
+
+void SegmentationNetwork::upsample(const cv::Mat& maps, const std::vector<int>& channels,
+                                   cv::Size size, int depth, cv::Mat& out) {
+  // The channels picked at the output's size, so the full-size image is written once (twice for
+  // bytes: upsampled as floats, then rounded into `out`).
+  CV_Assert(depth == CV_8U || depth == CV_32F);
+  cv::Mat picked(maps.size(), CV_32FC(static_cast<int>(channels.size())));
+  std::vector<int> from_to;
+  for (size_t i = 0; i < channels.size(); ++i) {
+    from_to.push_back(channels[i]);
+    from_to.push_back(static_cast<int>(i));
+  }
+  cv::mixChannels(&maps, 1, &picked, 1, from_to.data(), channels.size());
+  if (depth == CV_8U) {
+    cv::Mat floats;
+    cv::resize(picked, floats, size, 0, 0, cv::INTER_LINEAR);
+    floats.convertTo(out, CV_8U, 255.0);
+    return;
+  }
+  cv::resize(picked, out, size, 0, 0, cv::INTER_LINEAR);
+  // Bilinear weights are not negative, but their float sum can exceed 1 by a rounding step.
+  cv::Mat values = out.reshape(1);
+  cv::min(values, 1.0, values);
 }
 
 }  // namespace stocs

@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "stocs/util/error.h"
+#include "stocs/util/param_file.h"
 
 namespace stocs {
 
@@ -59,6 +61,24 @@ void SegmentationNetworkParams::validate() const {
       throw InputError(fmt::format("channels names '{}' twice", channels[i]));
     }
   }
+}
+
+SegmentationNetworkParams SegmentationNetworkParams::fromFile(const std::string& file) {
+  SegmentationNetworkParams p;
+  readParamFile(file, schema(), p);
+  if (p.model.empty()) throw InputError(fmt::format("{}: model is not set", file));
+  if (p.model.find("://") != std::string::npos) {
+    throw InputError(fmt::format(
+        "{}: model '{}' is a URL; give the ONNX file's path, absolute or relative to this file",
+        file, p.model));
+  }
+  p.model = (std::filesystem::path(file).parent_path() / p.model).lexically_normal().string();
+  try {
+    p.validate();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", file, e.what()));
+  }
+  return p;
 }
 
 int SegmentationNetworkParams::channelOf(const std::string& object) const {

@@ -53,13 +53,32 @@ class NetworkProbabilitySource : public ProbabilitySource {
   mutable std::optional<std::pair<std::pair<int, int>, std::vector<cv::Mat>>> cached_;
 };
 
+/// A BOP dataset names its objects by obj_id: a channel list must name obj_ids or '-'.
+void requireObjectIds(const std::string& file, const std::vector<std::string>& channels) {
+  for (const std::string& name : channels) {
+    if (name != "-" &&
+        (name.empty() || name.find_first_not_of("0123456789") != std::string::npos)) {
+      throw InputError(
+          fmt::format("{}: channels names '{}'; for a BOP dataset name each channel's obj_id "
+                      "(\"-\" for none)",
+                      file, name));
+    }
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<ProbabilitySource> makeNetworkProbabilitySource(const std::string& spec,
-                                                                const std::string& model,
+                                                                const std::string& file,
                                                                 const BopDataset& dataset) {
+  const std::string extension = std::filesystem::path(file).extension().string();
   SegmentationNetworkParams params;
-  params.model = model;
+  if (extension == ".yaml" || extension == ".yml") {
+    params = SegmentationNetworkParams::fromFile(file);
+    requireObjectIds(file, params.channels);
+  } else {
+    params.model = file;
+  }
   return std::make_unique<NetworkProbabilitySource>(spec, SegmentationNetwork(params), dataset);
 }
 

@@ -95,7 +95,8 @@ std::string probabilitySourceHelp() {
   return fmt::format(
       "'real' (the dataset's prob/ maps), 'sim:PRESET' (real maps where prob/ has one, the "
       "segmentation simulator on the ground-truth masks elsewhere) or 'simonly:PRESET' (always "
-      "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images); presets: {}; "
+      "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images: an ONNX file "
+      "with the package network's settings, or a settings YAML naming one); presets: {}; "
       "segmentation inputs: {}",
       fmt::join(segmentationPresetNames(), ", "), segmentationInputHelp());
 }

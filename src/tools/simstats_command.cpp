@@ -132,8 +132,8 @@ Command registerSimstats(CLI::App& app) {
   cmd->add_option("--dataset", o->datasets, "BOP dataset folder (repeatable)")->required();
   cmd->add_option("--presets", o->presets, "Simulator presets, comma-separated")->delimiter(',');
   cmd->add_option("--network", o->networks,
-                  "ONNX segmentation network (the package's settings, as --prob onnx:) run on "
-                  "rgb/ (repeatable)");
+                  "ONNX segmentation network (the package's settings) or settings YAML naming "
+                  "one, as --prob onnx: takes it, run on rgb/ (repeatable)");
   cmd->add_flag("--per-object", o->per_object, "One row per object");
   cmd->add_option("--seeds", o->seeds, "Simulated maps per object: seeds 1..N")
       ->check(CLI::PositiveNumber);

@@ -155,7 +155,9 @@ TEST(BadConfig, SegmentationNodeExitsWithAMessageNamingTheProblem) {
            {model + " _classes:=3", seven, "channels names 7 channels, but classes is 3"},
            {model + " _resize:=crop", seven, "is 'crop', not one of stretch, letterbox"},
            {model + " _input_width:=wide", seven, "/input_width must be an integer"},
-           {model + " _input_width:=0", seven, "/input_width 0 px is outside [8, 8192]"}}) {
+           {model + " _input_width:=0", seven, "/input_width 0 px is outside [8, 8192]"},
+           {model + " _probability_depth:=16U", seven,
+            "/probability_depth is '16U', not one of 32F, 8U"}}) {
     const std::string name = nextNodeName();
     if (!c.channels.empty()) ros::param::set("/" + name + "/channels", c.channels);
     std::string output;

@@ -3,6 +3,7 @@
 // every bad model or image named.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 
@@ -99,6 +100,27 @@ TEST(SegmentationNetwork, SmallerOutputScaledToTheImage) {
   expectMaps(SegmentationNetwork(p).segment(image), {1.0, 0.2, 0.0}, image.size());
 }
 
+TEST(SegmentationNetwork, UpsamplePicksChannelsInOrderAsFloatOrBytes) {
+  const SegmentationNetwork net(passThrough());
+  const cv::Mat image = uniform(64, 48, 0, 51, 255);  // channels 1.0, 0.2, 0.0
+  const cv::Mat maps = net.outputMaps(image);
+  EXPECT_EQ(maps.type(), CV_32FC3);
+  EXPECT_EQ(maps.size(), cv::Size(16, 12));
+  cv::Mat floats;
+  SegmentationNetwork::upsample(maps, {2, 0}, image.size(), CV_32F, floats);
+  ASSERT_EQ(floats.type(), CV_32FC2);
+  ASSERT_EQ(floats.size(), image.size());
+  EXPECT_NEAR(floats.at<cv::Vec2f>(20, 30)[0], 0.0, 1e-6);
+  EXPECT_NEAR(floats.at<cv::Vec2f>(20, 30)[1], 1.0, 1e-6);
+  // Into a buffer the caller owns (a message's data), as 8-bit round(255 p).
+  std::vector<uint8_t> buffer(64 * 48 * 3);
+  cv::Mat bytes(image.size(), CV_8UC3, buffer.data());
+  SegmentationNetwork::upsample(maps, {1, 0, 2}, image.size(), CV_8U, bytes);
+  ASSERT_EQ(bytes.data, buffer.data()) << "the caller's buffer was replaced";
+  EXPECT_EQ(bytes.at<cv::Vec3b>(0, 0), cv::Vec3b(51, 255, 0));
+  EXPECT_EQ(bytes.at<cv::Vec3b>(47, 63), cv::Vec3b(51, 255, 0));
+}
+
 TEST(SegmentationNetwork, ChannelOfObject) {
   Params p = passThrough();
   EXPECT_EQ(p.channelOf("2"), 2);
@@ -129,6 +151,66 @@ TEST(SegmentationNetwork, BadModelsAndConfigurationsNamed) {
   Params wide = passThrough();
   wide.input_width = 0;
   EXPECT_NE(errorOf(wide).find("input_width"), std::string::npos);
+}
+
+/// A settings file with `text` in the scratch folder, beside a copy of the pass-through model.
+std::string settingsFile(const std::string& text) {
+  const auto dir = test::scratchDir("segmentation_settings");
+  std::filesystem::copy_file("test/data/segmentation/pass_through.onnx", dir / "net.onnx",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "net.yaml") << text;
+  return (dir / "net.yaml").string();
+}
+
+std::string settingsError(const std::string& text) {
+  try {
+    SegmentationNetworkParams::fromFile(settingsFile(text));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SegmentationNetwork, SettingsFileReadThroughTheSchema) {
+  const std::string file = settingsFile(
+      "model: net.onnx  # beside the file\ninput_width: 16\ninput_height: 12\n"
+      "resize: letterbox\nchannel_order: bgr\nmean_0: 40\nscale: 0.01\noutput: probabilities\n"
+      "classes: 3\nchannels: ['-', '2', '1']\nthreads: 1\n");
+  const Params p = SegmentationNetworkParams::fromFile(file);
+  EXPECT_EQ(p.model, (std::filesystem::path(file).parent_path() / "net.onnx").string());
+  EXPECT_EQ(p.resize, Params::Resize::kLetterbox);
+  EXPECT_EQ(p.channel_order, Params::ChannelOrder::kBgr);
+  EXPECT_EQ(p.output, Params::Output::kProbabilities);
+  EXPECT_EQ(p.activation, Params::Activation::kSoftmax);  // the default
+  EXPECT_FLOAT_EQ(p.mean_0, 40);
+  EXPECT_EQ(p.channelOf("1"), 2);
+  expectMaps(SegmentationNetwork(p).segment(uniform(16, 12, 50, 100, 150)), {0.1, 1.0, 1.0},
+             cv::Size(16, 12));
+}
+
+TEST(SegmentationNetwork, SettingsFileMistakesNamed) {
+  const std::string good = "model: net.onnx\nclasses: 3\n";
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {good + "input_widht: 16\n", "net.yaml:3: input_widht: unknown key"},
+           {good + "input_width: 0\n", "net.yaml:3: input_width: 0 px is outside [8, 8192]"},
+           {good + "input_width: wide\n",
+            "net.yaml:3: input_width: expected an integer, got 'wide'"},
+           {good + "resize: crop\n", "net.yaml:3: resize: 'crop' is not one of stretch, letterbox"},
+           {good + "channels: cat\n", "net.yaml:3: channels: expected a list"},
+           {good + "channels: ['-', '1']\n",
+            "net.yaml: channels names 2 channels, but classes is 3"},
+           {"classes: 3\n", "net.yaml: model is not set"},
+           {"model: package://stocs_ros/models/segmenter.onnx\n",
+            "model 'package://stocs_ros/models/segmenter.onnx' is a URL"},
+           {"[1, 2]\n", "net.yaml: expected a map of keys"},
+           {"model: [\n", "net.yaml: invalid YAML"}}) {
+    EXPECT_NE(settingsError(text).find(message), std::string::npos)
+        << text << " gave: " << settingsError(text);
+  }
+  EXPECT_NE(
+      errorOf(SegmentationNetworkParams::fromFile(settingsFile("model: net.onnx\nclasses: 7\n")))
+          .find("is not NCHW with 7 classes"),
+      std::string::npos);
 }
 
 TEST(SegmentationNetwork, BadImagesNamed) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -63,6 +64,72 @@ TEST(SegmenterModel, EstimateNamesAMissingOrCorruptModel) {
                                    " --out " + (root / "r.csv").string() + " --prob onnx:" + model,
                                out),
               0);
+    EXPECT_NE(out.find(message), std::string::npos) << out;
+  }
+}
+
+/// config/segmenter.yaml's settings for the CLI: the model beside the file, channels as obj_ids.
+std::string cliSettings(const std::string& channels, int classes = 7,
+                        const std::string& extra = "") {
+  return fmt::format(
+      "model: {}\ninput_width: 160\ninput_height: 120\nresize: stretch\nchannel_order: rgb\n"
+      "scale: 0.00392156862745098\noutput: logits\nactivation: softmax\nclasses: {}\n"
+      "channels: [{}]\n{}",
+      std::filesystem::absolute(kModel).string(), classes, channels, extra);
+}
+
+/// `stocs simstats --per-object` of the network given as `network` (a model or a settings file)
+/// on the dataset, with the network's name taken out of the rows.
+std::string networkRows(const std::filesystem::path& data, const std::filesystem::path& network) {
+  std::string out;
+  EXPECT_EQ(test::runCommand(kTool + " simstats --per-object --presets mild --seeds 1 --dataset " +
+                                 data.string() + " --network " + network.string(),
+                             out),
+            0)
+      << out;
+  const std::string name = network.filename().string();
+  for (size_t at = out.find(name); at != std::string::npos; at = out.find(name)) {
+    out.replace(at, name.size(), "NETWORK");
+  }
+  return out;
+}
+
+TEST(SegmenterModel, ASettingsFileGivesTheNetworkItsSettings) {
+  const auto root = test::scratchDir("segmenter_model_settings");
+  std::string out;
+  ASSERT_EQ(test::runCommand(kTool + " synth --quiet --out " + (root / "data").string() +
+                                 " --objects 6 --distractors 2 --seed 7",
+                             out),
+            0)
+      << out;
+  std::ofstream(root / "same.yaml") << cliSettings("'-', '1', '2', '3', '4', '5', '6'");
+  std::ofstream(root / "swapped.yaml") << cliSettings("'-', '2', '1', '3', '4', '5', '6'");
+  const std::string defaults = networkRows(root / "data", kModel);
+  EXPECT_NE(defaults.find("| network NETWORK, obj 1 |"), std::string::npos) << defaults;
+  EXPECT_EQ(networkRows(root / "data", root / "same.yaml"), defaults);
+  EXPECT_NE(networkRows(root / "data", root / "swapped.yaml"), defaults)
+      << "the settings file's channels were not used";
+}
+
+TEST(SegmenterModel, EstimateNamesBadSettings) {
+  const auto root = test::scratchDir("segmenter_model_bad_settings");
+  test::writeSyntheticBopDataset(root / "data");
+  const std::string ids = "'-', '1', '2', '3', '4', '5', '6'";
+  for (const auto& [text, message] : std::vector<std::pair<std::string, std::string>>{
+           {cliSettings(ids, 7, "treads: 2\n"), "bad.yaml:11: treads: unknown key"},
+           {cliSettings(ids, 7, "threads: -1\n"), "bad.yaml:11: threads: -1 is outside [0, 256]"},
+           {cliSettings("'-', '1', '2', '3', '4'", 5),
+            "output shape [1, 7, 120, 160] is not NCHW with 5 classes"},
+           {cliSettings("'-', box, long_box, cylinder, mug, bowl, block"),
+            "bad.yaml: channels names 'box'; for a BOP dataset name each channel's obj_id"}}) {
+    std::ofstream(root / "bad.yaml") << text;
+    std::string out;
+    EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +
+                                   " --out " + (root / "r.csv").string() +
+                                   " --prob onnx:" + (root / "bad.yaml").string(),
+                               out),
+              2)
+        << out;
     EXPECT_NE(out.find(message), std::string::npos) << out;
   }
 }

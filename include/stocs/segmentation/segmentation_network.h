@@ -3,6 +3,7 @@
 // in, one probability map per output channel out, at the image's size.
 
 #include <memory>
+#include <opencv2/core/types.hpp>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,18 @@ class SegmentationNetwork {
   /// network wants): one CV_32FC1 map in [0, 1] per output channel, at the image's size. Throws
   /// InputError for an empty image or another type. Not for use from several threads at once.
   std::vector<cv::Mat> segment(const cv::Mat& bgr) const;
+
+  /// The first half of segment(): the maps at the network's output resolution, as one
+  /// CV_32FC<classes> image in [0, 1] of the part of the output that covers the image (letterbox
+  /// padding cut off). Small: upsample() brings the channels a caller needs to the image's size.
+  cv::Mat outputMaps(const cv::Mat& bgr) const;
+
+  /// The channels `channels` of `maps` (outputMaps()), in that order, resized bilinearly to `size`
+  /// into `out`: CV_32FC<n> probabilities for `depth` CV_32F, or CV_8UC<n> holding
+  /// round(255 p) for CV_8U. `out` keeps its buffer when it already has that size and type (a
+  /// view of a message's data), so the maps are written where they are sent from.
+  static void upsample(const cv::Mat& maps, const std::vector<int>& channels, cv::Size size,
+                       int depth, cv::Mat& out);
 
   const SegmentationNetworkParams& params() const;
 

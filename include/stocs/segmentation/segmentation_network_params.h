@@ -45,6 +45,10 @@ struct SegmentationNetworkParams {
   /// Throws InputError naming the first value out of range or a channel list that does not match
   /// `classes`.
   void validate() const;
+  /// The settings in a YAML file of config/segmenter.yaml's format, every other key at its default,
+  /// validated; `model` must be set, to a path absolute or relative to the file's folder. Throws
+  /// InputError naming the file (and the line and key where one is wrong).
+  static SegmentationNetworkParams fromFile(const std::string& file);
   /// The output channel of the object, or -1 when it has none.
   int channelOf(const std::string& object) const;
 };

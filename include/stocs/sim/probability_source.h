@@ -35,6 +35,7 @@ std::string probabilitySourceHelp();
 /// segmentation network in the ONNX file MODEL on the frame's rgb/ image. Throws InputError
 /// for an unknown spec or preset, listing the known ones. `seed` makes simulated maps reproducible;
 /// the source keeps the last frame's masks, so it is not for use from several threads at once.
+/// "onnx:SETTINGS.yaml": the network and settings a YAML file gives (makeNetworkProbabilitySource).
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed);
 
