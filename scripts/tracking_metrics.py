@@ -129,6 +129,9 @@ def main():
     first, last = set(range(50)), set(range(frames - 50, frames))
     print(f"drift_first50_median_adds_pct {100 * median_error(track, first):.2f}")
     print(f"drift_last50_median_adds_pct {100 * median_error(track, last):.2f}")
+    if detect:  # the same medians of detection, which cannot drift: what the views change
+        print(f"detection_first50_median_adds_pct {100 * median_error(detect, first):.2f}")
+        print(f"detection_last50_median_adds_pct {100 * median_error(detect, last):.2f}")
     last = [t for (im, _), t in track.items() if im == frames - 1 and t[0]]
     print(f"last_frame_correct {sum(t[3] for t in last)} of {len(last)}")
     for event in events["events"]:

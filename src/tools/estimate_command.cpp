@@ -43,15 +43,8 @@ struct EstimateOptions {
   double frame_rate = 30;  ///< --track: images per second, by im_id
   MethodOptions method_options;
   PipelineParams params;
-  TrackingParams tracking = untracked();
+  TrackingParams tracking;
   ModelOptions model;
-
-  /// The tracking defaults with tracking off: --track asks for it.
-  static TrackingParams untracked() {
-    TrackingParams p;
-    p.enabled = false;
-    return p;
-  }
 };
 
 RigidPose toBop(const Eigen::Isometry3f& pose) {

@@ -455,10 +455,29 @@ TEST_F(TrackerTest, AStreamDetectsInTheBackgroundAndMergesAtTheNextFrame) {
   ASSERT_EQ(second.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected});
   EXPECT_LT(adds(second.objects[0].result.estimate.instances.at(0).pose, next),
             0.02 * model_->model.diameter);
-  const FrameTracking third =
-      tracker.track(frame(next), objects, estimator_.params(), 2 * kFramePeriod);
-  EXPECT_EQ(third.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
+  // That frame started the detection confirming the new track; merged at the next frame.
+  tracker.waitForDetection();
+  tracker.track(frame(next), objects, estimator_.params(), 2 * kFramePeriod);
+  const FrameTracking fourth =
+      tracker.track(frame(next), objects, estimator_.params(), 3 * kFramePeriod);
+  EXPECT_EQ(fourth.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
   EXPECT_FALSE(tracker.takeDetectionError());
+}
+
+TEST_F(TrackerTest, AStreamSlowerThanTheGapIsDetectedInEachFrame) {
+  StreamTracker tracker{TrackingParams{}};  // max_gap 0.5 s
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  const auto frame = std::make_shared<const Frame>(frameAt(truth_));
+  tracker.track(frame, objects, estimator_.params(), 0.0);  // detection starts in the background
+  // Each frame a second later ends the tracks: detected in place, not left to a background
+  // detection that the next frame would end again.
+  for (int k = 1; k <= 2; ++k) {
+    const FrameTracking t = tracker.track(frame, objects, estimator_.params(), k * 1.0);
+    EXPECT_TRUE(t.counts.reset);
+    ASSERT_EQ(t.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected}) << k;
+    EXPECT_LT(adds(t.objects[0].result.estimate.instances.at(0).pose, truth_),
+              0.02 * model_->model.diameter);
+  }
 }
 
 TEST_F(TrackerTest, AnObjectWithoutAMapIsNamed) {

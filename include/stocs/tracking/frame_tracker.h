@@ -78,10 +78,11 @@ class FrameTracker {
   /// Each object's tracker, by name.
   const std::map<std::string, ObjectTracker>& objects() const { return objects_; }
 
- private:
   /// Whether a frame at `stamp` (the input's previous frame at `previous_input`, else the last
   /// tracked one) must not continue the tracks.
   bool timeJumped(double stamp, std::optional<double> previous_input) const;
+
+ private:
   /// Ends the tracks if the frame at `stamp` may not continue them (counted in `out`); the time
   /// since the last frame (0 after a reset).
   double begin(FrameTracking& out, double stamp, std::optional<double> previous_input);

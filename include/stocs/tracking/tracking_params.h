@@ -7,10 +7,8 @@
 namespace stocs {
 
 struct TrackingParams {
-  /// Track instead of detecting every object in every frame: the node's default (measured more
-  /// accurate and cheaper on streams, docs/ros.md#tracking); `stocs estimate` tracks only with
-  /// --track true, as a dataset's images are independent views unless it is a sequence.
-  bool enabled = true;
+  /// Track (the node, `stocs estimate --track`) instead of detecting every object in every frame.
+  bool enabled = false;
   /// Full detection (StoCS on the whole image) also runs every this many frames while an object is
   /// tracked, so that a track that slid onto a look-alike is caught; 0: only when tracking fails.
   int redetect_every = 15;

@@ -238,13 +238,16 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   EXPECT_EQ(first.tracking->redetected, 1);
   EXPECT_EQ(toObjectPoseArray(first, *s).objects.at(0).state, ObjectPose::REDETECTED);
 
-  const FrameResult next = trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker);
+  // That frame started the detection confirming the new track; merged at the next frame.
+  tracker.waitForDetection();
+  trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker);
+  const FrameResult next = trackFrame(cloudJob(3.0 + 3.0 / 30), s, tracker);
   expectFoundNearTruth(next);
   EXPECT_EQ(next.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kTracked});
   EXPECT_EQ(toObjectPoseArray(next, *s).objects.at(0).state, ObjectPose::TRACKED);
 
   // The map vanishes: the box is lost, listed as rejected and lost, with no pose published.
-  EstimationJob gone = cloudJob(3.0 + 3.0 / 30);
+  EstimationJob gone = cloudJob(3.0 + 4.0 / 30);
   gone.frame.probabilities[0] = image("32FC1", cv::Mat(240, 320, CV_32FC1, cv::Scalar(0)));
   const FrameResult lost = trackFrame(gone, s, tracker);
   EXPECT_EQ(lost.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kLost});
