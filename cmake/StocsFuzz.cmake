@@ -40,6 +40,10 @@ target_link_libraries(stocs_fuzz_make_corpus stocs_core nlohmann_json::nlohmann_
 target_compile_options(stocs_fuzz_make_corpus PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
 target_link_options(stocs_fuzz_make_corpus PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS})
 
+# The mesh reader fuzz_mesh_model starts for DAE files (src/io/child_reader.h), with the sanitizers.
+target_compile_options(stocs_mesh_reader PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
+target_link_options(stocs_mesh_reader PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS})
+
 set(STOCS_FUZZ_TARGETS "")
 file(GLOB STOCS_FUZZ_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/fuzz/fuzz_*.cpp)
 foreach(src ${STOCS_FUZZ_SOURCES})
@@ -71,4 +75,4 @@ foreach(src ${STOCS_FUZZ_SOURCES})
   list(APPEND STOCS_FUZZ_TARGETS ${name})
 endforeach()
 # `cmake --build build/fuzz --target fuzz` builds every fuzz target.
-add_custom_target(fuzz DEPENDS ${STOCS_FUZZ_TARGETS})
+add_custom_target(fuzz DEPENDS ${STOCS_FUZZ_TARGETS} stocs_mesh_reader)
