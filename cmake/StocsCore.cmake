@@ -43,6 +43,12 @@ stocs_add_module(io PUBLIC stocs_geometry
   assimp::assimp)
 target_include_directories(stocs_io SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
 target_compile_definitions(stocs_io PRIVATE ${PCL_DEFINITIONS})
+# The program stocs_io reads assimp's formats in (src/io/child_reader.h): beside the library, where
+# the library looks for it (for a static core that is the programs' folder, the build's root).
+add_executable(stocs_mesh_reader ${PROJECT_SOURCE_DIR}/src/mesh_reader/mesh_reader_main.cpp)
+target_include_directories(stocs_mesh_reader PRIVATE ${PROJECT_SOURCE_DIR}/src/io)
+target_link_libraries(stocs_mesh_reader PRIVATE stocs_io)
+set_target_properties(stocs_mesh_reader PROPERTIES RUNTIME_OUTPUT_DIRECTORY $<TARGET_FILE_DIR:stocs_io>)
 stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
 target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
 stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
@@ -64,6 +70,7 @@ if(STOCS_CATKIN)
   install(TARGETS ${modules}
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+  install(TARGETS stocs_mesh_reader RUNTIME DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
   install(DIRECTORY include/stocs/ DESTINATION ${CATKIN_GLOBAL_INCLUDE_DESTINATION}/stocs)
 endif()
 
@@ -77,6 +84,7 @@ if(NOT STOCS_CATKIN)
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(TARGETS stocs_mesh_reader RUNTIME DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(DIRECTORY include/stocs/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/stocs)
   set(STOCS_CONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/stocs)
   install(EXPORT stocsTargets NAMESPACE stocs:: DESTINATION ${STOCS_CONFIG_DIR})

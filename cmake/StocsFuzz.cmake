@@ -40,6 +40,23 @@ target_link_libraries(stocs_fuzz_make_corpus stocs_core nlohmann_json::nlohmann_
 target_compile_options(stocs_fuzz_make_corpus PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
 target_link_options(stocs_fuzz_make_corpus PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS})
 
+# The mesh reader fuzz_mesh_model starts for DAE files (src/io/child_reader.h), with the sanitizers.
+target_compile_options(stocs_mesh_reader PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
+target_link_options(stocs_mesh_reader PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS})
+
+# The parsers are in these modules: the fuzz targets link them only, so the fuzz build compiles
+# no more of the core (not the estimation, tracking, simulator, evaluation nor segmentation).
+set(STOCS_FUZZ_LINKED_MODULES stocs_io stocs_model)
+# The ROS message conversion, compiled once for both ROS fuzz targets.
+if(STOCS_FUZZ_ROS_FOUND)
+  add_library(stocs_fuzz_ros_conversion OBJECT ${PROJECT_SOURCE_DIR}/src/ros/cloud_conversion.cpp
+              ${PROJECT_SOURCE_DIR}/src/ros/image_conversion.cpp)
+  target_compile_options(stocs_fuzz_ros_conversion PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
+  target_include_directories(stocs_fuzz_ros_conversion SYSTEM PRIVATE
+                             ${STOCS_FUZZ_SENSOR_MSGS_INCLUDE} ${STOCS_FUZZ_CV_BRIDGE_INCLUDE})
+  target_link_libraries(stocs_fuzz_ros_conversion PRIVATE ${STOCS_FUZZ_LINKED_MODULES} fmt::fmt)
+endif()
+
 set(STOCS_FUZZ_TARGETS "")
 file(GLOB STOCS_FUZZ_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/fuzz/fuzz_*.cpp)
 foreach(src ${STOCS_FUZZ_SOURCES})
@@ -49,14 +66,13 @@ foreach(src ${STOCS_FUZZ_SOURCES})
     if(NOT STOCS_FUZZ_ROS_FOUND)
       continue()
     endif()
-    list(APPEND sources ${PROJECT_SOURCE_DIR}/src/ros/cloud_conversion.cpp
-         ${PROJECT_SOURCE_DIR}/src/ros/image_conversion.cpp)
+    list(APPEND sources $<TARGET_OBJECTS:stocs_fuzz_ros_conversion>)
   endif()
   add_executable(${name} ${sources})
   target_compile_options(${name} PRIVATE -fsanitize=fuzzer,${STOCS_FUZZ_SANITIZERS}
                          -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(${name} PRIVATE -fsanitize=fuzzer,${STOCS_FUZZ_SANITIZERS})
-  target_link_libraries(${name} stocs_core)
+  target_link_libraries(${name} ${STOCS_FUZZ_LINKED_MODULES})
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/fuzz)
   if(name STREQUAL "fuzz_mesh_model")  # calls the assimp reader in-process (src/io)
     target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src/io)
@@ -71,4 +87,4 @@ foreach(src ${STOCS_FUZZ_SOURCES})
   list(APPEND STOCS_FUZZ_TARGETS ${name})
 endforeach()
 # `cmake --build build/fuzz --target fuzz` builds every fuzz target.
-add_custom_target(fuzz DEPENDS ${STOCS_FUZZ_TARGETS})
+add_custom_target(fuzz DEPENDS ${STOCS_FUZZ_TARGETS} stocs_mesh_reader)

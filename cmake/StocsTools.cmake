@@ -5,6 +5,7 @@ target_link_libraries(stocs PRIVATE stocs_core stocs_methods CLI11::CLI11 opencv
 if(TARGET stocs_methods_open3d)
   target_link_libraries(stocs PRIVATE stocs_methods_open3d)
 endif()
+add_dependencies(stocs stocs_mesh_reader)  # reads assimp's formats (src/io/child_reader.h)
 
 if(STOCS_CATKIN)
   install(TARGETS stocs RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -2,8 +2,9 @@
 // an InputError, never a crash, leak or undefined behaviour. The first byte picks the format (its
 // extension), the rest is the file. OBJ, STL, glTF and GLB go to the assimp reader in this process,
 // so the fuzzer sees the coverage and the sanitizers' reports of assimp and of the merge; DAE goes
-// through stocs::loadMesh, which reads it in a child process: Debian's assimp 5.2.5 crashes in its
-// COLLADA parser on some malformed files (fuzz/known_crashes), which must become an InputError.
+// through stocs::loadMesh, which reads it in the program stocs_mesh_reader: Debian's assimp 5.2.5
+// crashes in its COLLADA parser on some malformed files (fuzz/known_crashes), which must become an
+// InputError.
 #include <iterator>
 
 #include "assimp_model.h"

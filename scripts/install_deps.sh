@@ -23,6 +23,8 @@ PACKAGES=(
   libassimp-dev assimp-utils
   gnuplot-nox
   clang libclang-rt-14-dev libomp-14-dev
+  # lld links the sanitizer and fuzz builds' programs (scripts/common.sh: QUICK_LINK).
+  lld
   # What README's commands use: rosrun, tf_echo, rosbag, rviz (headless under xvfb-run, which
   # needs xauth; Xvfb draws OpenGL with Mesa's software renderer), and the Python messages that
   # rostopic and rosservice load for every type they echo or call. catkin_lint checks package.xml

@@ -78,7 +78,7 @@ else
 fi
 cmake -S "$REPO" -B "$CORE" -DSTOCS_WITH_ROS=OFF -DSTOCS_SANITIZE=$SANITIZE \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-  -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON \
+  -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON "${QUICK_LINK[@]}" \
   -DSTOCS_DATASETS_DIR="${STOCS_DATASETS:-}" > "$CORE.cmake.log" 2>&1 || { cat "$CORE.cmake.log"; exit 1; }
 cmake --build "$CORE" -j"$JOBS"
 stage_done "the core's test build (sanitizers: $SANITIZE)"

@@ -1,56 +1,60 @@
 #include "child_reader.h"
 
+#include <dlfcn.h>
 #include <fcntl.h>
 #include <fmt/format.h>
+#include <link.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdint>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <vector>
 
+#include "mesh_reply.h"
 #include "model_file_check.h"
+
+extern char** environ;
 
 namespace stocs::detail {
 namespace {
 
-// The first byte the child sends: what follows it.
-enum class Reply : char { kMesh = 'M', kInputError = 'E' };
+constexpr int kReplyFd = 3;  // where stocs_mesh_reader writes its reply
 
-bool writeAll(int fd, const void* data, size_t size) {
-  const char* bytes = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = write(fd, bytes, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    bytes += n;
-    size -= static_cast<size_t>(n);
+/// $STOCS_MESH_READER, else stocs_mesh_reader beside the shared library or program that holds
+/// this function (the build puts and installs it there).
+std::string meshReaderProgram() {
+  if (const char* set = std::getenv("STOCS_MESH_READER")) return set;
+  Dl_info info{};
+  link_map* object = nullptr;
+  std::filesystem::path holder = "/proc/self/exe";
+  if (dladdr1(reinterpret_cast<void*>(&meshReaderProgram), &info, reinterpret_cast<void**>(&object),
+              RTLD_DL_LINKMAP) != 0 &&
+      object != nullptr && object->l_name != nullptr && object->l_name[0] != '\0') {
+    holder = object->l_name;  // a shared library; the program itself has no name here
   }
-  return true;
+  std::error_code ec;
+  const std::filesystem::path resolved = std::filesystem::canonical(holder, ec);
+  return ((ec ? holder : resolved).parent_path() / "stocs_mesh_reader").string();
 }
 
-/// The mesh as plain arrays: vertex and triangle counts, then their floats and ints.
-bool sendMesh(int fd, const MeshData& mesh) {
-  const uint64_t counts[2] = {mesh.vertices.size(), mesh.triangles.size()};
-  return writeAll(fd, counts, sizeof(counts)) &&
-         writeAll(fd, mesh.vertices.data(), mesh.vertices.size() * sizeof(Eigen::Vector3f)) &&
-         writeAll(fd, mesh.triangles.data(), mesh.triangles.size() * sizeof(Eigen::Vector3i));
-}
-
-/// The child's whole life: no return, no exit handlers, no flushing of the parent's buffers.
-[[noreturn]] void runChild(int fd, const std::function<MeshData()>& read) {
-  bool sent = false;
-  try {
-    const MeshData mesh = read();
-    const char reply = static_cast<char>(Reply::kMesh);
-    sent = writeAll(fd, &reply, 1) && sendMesh(fd, mesh);
-  } catch (const InputError& e) {
-    const char reply = static_cast<char>(Reply::kInputError);
-    sent = writeAll(fd, &reply, 1) && writeAll(fd, e.what(), std::strlen(e.what()));
-  } catch (...) {  // std::bad_alloc and the like: reported as a failed reader
-  }
-  _exit(sent ? 0 : 1);
+/// Starts `program path ext` with the pipe's write end as its descriptor kReplyFd.
+pid_t startReader(const std::string& program, const std::string& path, const std::string& ext,
+                  int reply_fd, int& error) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, reply_fd, kReplyFd);
+  std::vector<std::string> args = {program, path, ext};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  error = posix_spawn(&pid, program.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return error == 0 ? pid : -1;
 }
 
 std::vector<char> readAll(int fd) {
@@ -72,7 +76,7 @@ int waitFor(pid_t pid) {
   return status;
 }
 
-/// How the child ended, for the error when it sent no complete reply.
+/// How the reader ended, for the error when it sent no complete reply.
 std::string describeEnd(int status) {
   if (status != -1 && WIFSIGNALED(status)) {
     return fmt::format("crashed (signal {}: {})", WTERMSIG(status), strsignal(WTERMSIG(status)));
@@ -83,58 +87,41 @@ std::string describeEnd(int status) {
   return "failed (its end was not seen)";
 }
 
-/// The mesh sendMesh wrote into `bytes`; false when their length does not match its counts.
-bool decodeMesh(const std::vector<char>& bytes, MeshData& mesh) {
-  uint64_t counts[2] = {0, 0};
-  if (bytes.size() < sizeof(counts)) return false;
-  std::memcpy(counts, bytes.data(), sizeof(counts));
-  const size_t vertex_bytes = counts[0] * sizeof(Eigen::Vector3f);
-  if (bytes.size() != sizeof(counts) + vertex_bytes + counts[1] * sizeof(Eigen::Vector3i)) {
-    return false;
-  }
-  mesh.vertices.resize(counts[0]);
-  mesh.triangles.resize(counts[1]);
-  // Plain arrays of floats and ints, as the child's vectors held them.
-  std::memcpy(static_cast<void*>(mesh.vertices.data()), bytes.data() + sizeof(counts),
-              vertex_bytes);
-  std::memcpy(static_cast<void*>(mesh.triangles.data()),
-              bytes.data() + sizeof(counts) + vertex_bytes, counts[1] * sizeof(Eigen::Vector3i));
-  return true;
-}
-
-/// The mesh or error the child sent; throws InputError for an error or an incomplete reply.
+/// The mesh or error the reader sent; throws InputError for an error or an incomplete reply.
 MeshData parseReply(const std::string& path, const std::vector<char>& reply, int status) {
   const bool exited_ok = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
   MeshData mesh;
   if (exited_ok && !reply.empty()) {
     const std::vector<char> body(reply.begin() + 1, reply.end());
-    if (reply[0] == static_cast<char>(Reply::kInputError)) {
+    if (reply[0] == static_cast<char>(MeshReply::kInputError)) {
       throw InputError(std::string(body.begin(), body.end()));
     }
-    if (reply[0] == static_cast<char>(Reply::kMesh) && decodeMesh(body, mesh)) return mesh;
+    if (reply[0] == static_cast<char>(MeshReply::kMesh) && decodeMesh(body, mesh)) return mesh;
   }
   throw modelError(path, "the mesh reader " + describeEnd(status) + " reading this file");
 }
 
 }  // namespace
 
-MeshData readInChildProcess(const std::string& path, const std::function<MeshData()>& read) {
+MeshData readAssimpModelInChild(const std::string& path, const std::string& ext) {
+  const std::string program = meshReaderProgram();
   int fds[2];
-  // Close-on-exec: a program another thread starts meanwhile must not hold the write end open.
+  // Close-on-exec: a program another thread starts meanwhile must not hold the write end open
+  // (the reader's copy, dup2'd to kReplyFd, has no close-on-exec; glibc clears it also when the
+  // pipe's end already is kReplyFd).
   if (pipe2(fds, O_CLOEXEC) != 0) {
     throw modelError(path, fmt::format("cannot start the mesh reader: {}", strerror(errno)));
   }
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(fds[0]);
-    runChild(fds[1], read);
-  }
+  int error = 0;
+  const pid_t pid = startReader(program, path, ext, fds[1], error);
   close(fds[1]);
   if (pid < 0) {
     close(fds[0]);
-    throw modelError(path, fmt::format("cannot start the mesh reader: {}", strerror(errno)));
+    throw modelError(path, fmt::format("cannot start the mesh reader {}: {} (STOCS_MESH_READER "
+                                       "names it when it is elsewhere)",
+                                       program, strerror(error)));
   }
-  // Read before waiting: a large mesh fills the pipe, and the child waits for it to drain.
+  // Read before waiting: a large mesh fills the pipe, and the reader waits for it to drain.
   const std::vector<char> reply = readAll(fds[0]);
   close(fds[0]);
   return parseReply(path, reply, waitFor(pid));

@@ -1,5 +1,5 @@
 // Reading a model file by its extension (PLY and PCD through PCL, the other mesh formats through
-// assimp, in a child process), then the checks every format shares: finite coordinates and a
+// assimp, in a process of its own), then the checks every format shares: finite coordinates and a
 // plausible size.
 #include "stocs/io/mesh_io.h"
 
@@ -29,8 +29,8 @@ MeshData readModelFile(const std::string& path) {
   const std::string ext = lowerExtension(path);
   if (ext == ".ply" || ext == ".pcd") return detail::readPclModel(path, ext);
   if (detail::isAssimpFormat(ext)) {
-    // In a child process: assimp crashes on some malformed files (fuzz/known_crashes).
-    return detail::readInChildProcess(path, [&] { return detail::readAssimpModel(path, ext); });
+    // In a process of its own: assimp crashes on some malformed files (fuzz/known_crashes).
+    return detail::readAssimpModelInChild(path, ext);
   }
   throw InputError(fmt::format(
       "model {}: unsupported extension '{}' (use .ply, .pcd, .obj, .stl, .dae, .gltf or .glb)",

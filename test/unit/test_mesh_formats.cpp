@@ -8,6 +8,7 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <set>
@@ -244,6 +245,22 @@ TEST(MeshFormats, AReaderCrashGivesAnErrorNamingTheFile) {
       << error;
   EXPECT_NE(error.find(" reading this file"), std::string::npos) << error;
   writeBytes(dir / "quad.obj", kQuadObj);
+  EXPECT_EQ(loadMesh((dir / "quad.obj").string(), 0.001f).triangles.size(), 2u);
+}
+
+// assimp's formats are read by a program of its own (stocs_mesh_reader, started with posix_spawn:
+// a forked copy of a multi-threaded node may not run assimp). One that cannot start is named.
+TEST(MeshFormats, AMeshReaderThatCannotStartIsNamed) {
+  const fs::path dir = test::scratchDir("formats_no_reader");
+  writeBytes(dir / "quad.obj", kQuadObj);
+  ASSERT_EQ(setenv("STOCS_MESH_READER", "/nonexistent/stocs_mesh_reader", 1), 0);
+  const std::string error = errorOf(dir / "quad.obj");
+  unsetenv("STOCS_MESH_READER");
+  EXPECT_NE(error.find("model " + (dir / "quad.obj").string() +
+                       ": cannot start the mesh reader /nonexistent/stocs_mesh_reader: No such "
+                       "file or directory"),
+            std::string::npos)
+      << error;
   EXPECT_EQ(loadMesh((dir / "quad.obj").string(), 0.001f).triangles.size(), 2u);
 }
 

@@ -13,21 +13,14 @@
 #include "stocs/sim/probability_source.h"
 #include "stocs/util/error.h"
 #include "test_support.h"
+#include "three_object_scene_test.h"
 
 namespace stocs {
 namespace {
 namespace fs = std::filesystem;
 
-class ProbabilitySourceTest : public ::testing::Test {
+class ProbabilitySourceTest : public test::ThreeObjectSceneTest {
  protected:
-  void SetUp() override {
-    root_ = test::scratchDir("data");
-    test::writeThreeObjectScene(root_);
-    dataset_ = std::make_unique<BopDataset>(root_);
-    gt_ = dataset_->sceneGroundTruth(0).at(0);
-    ASSERT_EQ(gt_.size(), 3u);
-  }
-
   /// The visible mask of every instance of `obj`, from mask_visib.
   cv::Mat mask(int obj) const {
     cv::Mat m(480, 640, CV_8UC1, cv::Scalar(0));
@@ -38,10 +31,6 @@ class ProbabilitySourceTest : public ::testing::Test {
     }
     return m;
   }
-
-  fs::path root_;
-  std::unique_ptr<BopDataset> dataset_;
-  std::vector<BopGtInstance> gt_;
 };
 
 TEST_F(ProbabilitySourceTest, SimUsesRealMapsWhereTheyExistAndSimulatesElsewhere) {

@@ -10,22 +10,15 @@
 
 #include "stocs/sim/probability_source.h"
 #include "test_support.h"
+#include "three_object_scene_test.h"
 
 namespace stocs {
 namespace {
 namespace fs = std::filesystem;
 using test::expectInputError;
 
-class SegmentationInputSourceTest : public ::testing::Test {
+class SegmentationInputSourceTest : public test::ThreeObjectSceneTest {
  protected:
-  void SetUp() override {
-    root_ = test::scratchDir("data");
-    test::writeThreeObjectScene(root_);
-    dataset_ = std::make_unique<BopDataset>(root_);
-    gt_ = dataset_->sceneGroundTruth(0).at(0);
-    ASSERT_EQ(gt_.size(), 3u);
-  }
-
   cv::Mat load(const std::string& spec, int obj, uint64_t seed = 1) const {
     return makeProbabilitySource(spec, *dataset_, seed)->load(0, 0, obj);
   }
@@ -40,10 +33,6 @@ class SegmentationInputSourceTest : public ::testing::Test {
     std::ofstream(file) << text;
     return file;
   }
-
-  fs::path root_;
-  std::unique_ptr<BopDataset> dataset_;
-  std::vector<BopGtInstance> gt_;
 };
 
 /// Share of the pixels of `mask` where `map` is above 0.5.

@@ -480,6 +480,47 @@ TEST_F(TrackerTest, AStreamSlowerThanTheGapIsDetectedInEachFrame) {
   }
 }
 
+// Frames keep coming while a background detection runs (the node's case): following the track and
+// detecting read the same model at the same time (checked under ThreadSanitizer), and the object
+// stays tracked at its place.
+TEST_F(TrackerTest, AStreamFollowsFramesWhileItDetects) {
+  TrackingParams params;
+  params.redetect_every = 2;  // a detection starts at nearly every frame
+  StreamTracker tracker{params};
+  const std::vector<FrameObject> objects = {{"block", model_.get()}};
+  Eigen::Isometry3f pose = truth_;
+  double stamp = 0;
+  FrameTracking last;
+  for (int k = 0; k < 8; ++k, stamp += kFramePeriod) {
+    pose = moved(pose, 1, 0.5f);
+    last = tracker.track(std::make_shared<const Frame>(frameAt(pose)), objects, estimator_.params(),
+                         stamp);
+    if (k == 0) tracker.waitForDetection();  // the first detection gives the track
+  }
+  ASSERT_EQ(last.objects.at(0).result.estimate.instances.size(), 1u);
+  EXPECT_LT(adds(last.objects[0].result.estimate.instances[0].pose, pose),
+            0.02 * model_->model.diameter);
+  tracker.waitForDetection();
+  EXPECT_FALSE(tracker.takeDetectionError());
+}
+
+// Destroyed while its detection runs (the node's reload or shutdown), the stream tracker waits for
+// it and releases its frame and what the caller asked to keep (the models' owner); run under the
+// sanitizers (scripts/run_tests.sh), and under ThreadSanitizer when checking the thread's safety.
+TEST_F(TrackerTest, AStreamTrackerDestroyedWhileItDetectsReleasesItsFrame) {
+  auto frame = std::make_shared<const Frame>(frameAt(truth_));
+  auto keep = std::make_shared<int>(0);
+  const std::weak_ptr<const Frame> frame_held = frame;
+  const std::weak_ptr<int> keep_held = keep;
+  {
+    StreamTracker tracker{TrackingParams{}};
+    tracker.track(std::move(frame), {{"block", model_.get()}}, estimator_.params(), 0.0,
+                  std::nullopt, std::move(keep));
+  }
+  EXPECT_TRUE(frame_held.expired());
+  EXPECT_TRUE(keep_held.expired());
+}
+
 TEST_F(TrackerTest, AnObjectWithoutAMapIsNamed) {
   FrameTracker tracker{TrackingParams{}};
   const Frame frame = frameAt(truth_);
