@@ -31,6 +31,22 @@ std::filesystem::path datasetsDir() {
   return dir;
 }
 
+std::string fileBytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::map<std::string, std::string> treeFiles(const std::filesystem::path& root) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(root)) {
+    if (e.is_regular_file())
+      out[std::filesystem::relative(e.path(), root).string()] = fileBytes(e.path());
+  }
+  return out;
+}
+
 std::filesystem::path scratchDir(const std::string& name) {
   // One folder per test: ctest runs the tests of a file as parallel processes.
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();

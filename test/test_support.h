@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,12 @@ Eigen::Isometry3f writeSyntheticBopDataset(const std::filesystem::path& root);
 
 /// Writes a generated BOP dataset of one image holding 3 objects and a distractor (seed 11).
 void writeThreeObjectScene(const std::filesystem::path& root);
+
+/// The bytes of `file`.
+std::string fileBytes(const std::filesystem::path& file);
+
+/// Every file below `root`, relative to it, with its bytes: for comparing generated datasets.
+std::map<std::string, std::string> treeFiles(const std::filesystem::path& root);
 
 /// Runs a shell command, returning its exit code and capturing stdout and stderr in `output`.
 int runCommand(const std::string& command, std::string& output);

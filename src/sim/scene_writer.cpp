@@ -86,9 +86,12 @@ void writeImage(const fs::path& file, const cv::Mat& image) {
   }
 }
 
-/// Distractors take a random colour, or half of the time one close to a dataset object's, so that
-/// the segmentation simulator finds look-alikes.
-std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects, Rng& rng) {
+namespace {
+
+/// Each dataset object its palette colour; each distractor, for a share `lookalike_share`, one
+/// within `jitter` levels of a dataset object's, else a random one.
+std::vector<cv::Vec3b> drawColours(const std::vector<PlacedObject>& objects, float lookalike_share,
+                                   float jitter, Rng& rng) {
   std::vector<cv::Vec3b> colours;
   std::vector<int> ids;
   for (const PlacedObject& o : objects) {
@@ -100,16 +103,33 @@ std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects, Rn
       continue;
     }
     cv::Vec3b c;
-    const bool lookalike = !ids.empty() && uniform01(rng) < 0.5f;
+    const bool lookalike = !ids.empty() && uniform01(rng) < lookalike_share;
     const cv::Vec3b like =
         lookalike ? objectColour(ids[uniformIndex(rng, static_cast<uint32_t>(ids.size()))]) : c;
     for (int k = 0; k < 3; ++k) {
-      const float jitter = 40 * uniform01(rng) - 20;
-      c[k] = cv::saturate_cast<uint8_t>(lookalike ? like[k] + jitter : 255 * uniform01(rng));
+      const float offset = 2 * jitter * uniform01(rng) - jitter;
+      c[k] = cv::saturate_cast<uint8_t>(lookalike ? like[k] + offset : 255 * uniform01(rng));
     }
     colours.push_back(c);
   }
   return colours;
+}
+
+}  // namespace
+
+std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects,
+                                    const SceneLookParams& look, Rng& rng) {
+  // `rng` advances as with the default options whatever they are, so that the views drawn after
+  // the colours, and with them the ground truth, do not depend on the look-alike options.
+  Rng own = rng;
+  const SceneLookParams standard;
+  const std::vector<cv::Vec3b> colours =
+      drawColours(objects, standard.lookalike_share, standard.lookalike_jitter, rng);
+  if (look.lookalike_share == standard.lookalike_share &&
+      look.lookalike_jitter == standard.lookalike_jitter) {
+    return colours;
+  }
+  return drawColours(objects, look.lookalike_share, look.lookalike_jitter, own);
 }
 
 SceneWriter::SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
@@ -126,8 +146,9 @@ SceneWriter::SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams
 void SceneWriter::writeView(const SceneView& view, SceneRecords& records,
                             std::chrono::steady_clock::time_point start) const {
   const std::vector<PlacedObject>& objects = *view.objects;
-  const SyntheticFrame frame = renderSyntheticFrame(objects, *view.colours, view.camera_pose,
-                                                    params_.camera, noise_, view.image_seed);
+  const SyntheticFrame frame = renderSyntheticFrame(
+      objects, *view.colours, view.camera_pose, params_.camera, noise_,
+      drawSceneLook(params_.look, params_.camera, view.look_seed), view.image_seed);
   const std::set<int> present = writeInstances(dataset_.sceneDir(view.scene), view.im, frame,
                                                objects, view.camera_pose, records);
   const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};

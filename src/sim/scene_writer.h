@@ -34,6 +34,7 @@ struct SceneView {
   const std::vector<cv::Vec3b>* colours = nullptr;     ///< BGR, one per object
   Eigen::Isometry3f camera_pose = Eigen::Isometry3f::Identity();  ///< table to camera
   uint64_t image_seed = 0;                                        ///< depth noise and image grain
+  uint64_t look_seed = 0;  ///< the light and the backgrounds (scene_look.h)
   /// The objects the image's targets list with their instance counts (0 for one out of view): the
   /// scene's objects in a sequence; null: the objects in the image.
   const std::set<int>* listed = nullptr;
@@ -77,8 +78,10 @@ class SceneWriter {
 };
 
 /// Colours (BGR) of placed objects: each dataset object its own; distractors a random colour, or
-/// half of the time one close to a dataset object's, so that the simulator finds look-alikes.
-std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects, Rng& rng);
+/// for a share `look.lookalike_share` one within `look.lookalike_jitter` levels of a dataset
+/// object's, so that the simulator finds look-alikes and a network cannot go by colour alone.
+std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects,
+                                    const SceneLookParams& look, Rng& rng);
 
 /// Up to `count` of `ids` that are not in `present`, drawn from a stream of their own of `seed`, in
 /// increasing id order: the absent objects of an image's targets.

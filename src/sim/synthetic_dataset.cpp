@@ -83,7 +83,7 @@ std::vector<BopTarget> writeRandomViews(const SceneWriter& writer, int scene) {
   const SyntheticDatasetParams& params = writer.params();
   Rng rng(streamSeed(params.seed, static_cast<uint64_t>(scene)));
   const std::vector<PlacedObject> objects = arrangeObjects(writer.models(), params.layout, rng);
-  const std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
+  const std::vector<cv::Vec3b> colours = sceneColours(objects, params.look, rng);
   SceneRecords records;
   for (int im = 0; im < params.images_per_scene; ++im) {
     const auto start = std::chrono::steady_clock::now();
@@ -95,6 +95,7 @@ std::vector<BopTarget> writeRandomViews(const SceneWriter& writer, int scene) {
     view.camera_pose = randomCameraPose(params.layout, rng);
     view.image_seed = streamSeed(params.seed, (static_cast<uint64_t>(scene + 1) << 32) + im);
     view.absent_seed = view.image_seed;
+    view.look_seed = view.image_seed;
     view.segmentation_seeds = [seed = view.image_seed](int obj_id) {
       const uint64_t s = streamSeed(seed, obj_id + 2);
       return SegmentationSeeds{s, s, 0};
@@ -136,7 +137,8 @@ const ParamSet<SyntheticDatasetParams>& SyntheticDatasetParams::schema() {
           .add(&P::seed, "seed", "", std::nullopt,
                "random seed: the same seed writes the same files")
           .flag("--seed")
-          .nest(&P::sequence, "sequence", SequenceParams::schema(), "Sequences");
+          .nest(&P::sequence, "sequence", SequenceParams::schema(), "Sequences")
+          .nest(&P::look, "look", SceneLookParams::schema(), "Look");
   return schema;
 }
 

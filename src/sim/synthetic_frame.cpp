@@ -12,21 +12,12 @@ namespace {
 const cv::Vec3b kTableColour(150, 160, 170);
 const cv::Vec3b kBackgroundColour(40, 40, 40);
 
-/// Diffuse shading under a light above and behind the camera, plus ambient light.
-cv::Vec3b shade(const cv::Vec3b& colour, const cv::Vec3f& normal, const Eigen::Vector3f& light) {
-  const float diffuse =
-      std::max(0.0f, -Eigen::Vector3f(normal[0], normal[1], normal[2]).dot(light));
-  const float gain = 0.35f + 0.65f * diffuse;
-  return cv::Vec3b(cv::saturate_cast<uint8_t>(colour[0] * gain),
-                   cv::saturate_cast<uint8_t>(colour[1] * gain),
-                   cv::saturate_cast<uint8_t>(colour[2] * gain));
-}
-
 /// The support plane z = 0, 1.6 m square, in 10 cm tiles: the renderer skips a triangle that
 /// reaches behind the camera, so a few large triangles would leave holes in the table.
+constexpr int kTiles = 16;
+constexpr float kTile = 0.1f, kHalf = kTiles * kTile / 2;
+
 MeshData tableTop() {
-  constexpr int kTiles = 16;
-  constexpr float kTile = 0.1f, kHalf = kTiles * kTile / 2;
   MeshData plane;
   for (int y = 0; y <= kTiles; ++y) {
     for (int x = 0; x <= kTiles; ++x)
@@ -52,7 +43,7 @@ SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,
                                     const std::vector<cv::Vec3b>& colours,
                                     const Eigen::Isometry3f& camera_pose,
                                     const CameraIntrinsics& camera, const DepthNoiseParams& noise,
-                                    uint64_t seed) {
+                                    const SceneLook& look, uint64_t seed) {
   if (colours.size() != objects.size()) {
     throw InputError(
         fmt::format("synthetic frame: {} colours for {} objects", colours.size(), objects.size()));
@@ -75,14 +66,16 @@ SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,
   frame.depth =
       applyDepthNoise(frame.exact_depth, renderer.normals(), camera, noise, streamSeed(seed, 0));
 
-  const Eigen::Vector3f light = Eigen::Vector3f(0.3f, 0.6f, 1.0f).normalized();  // camera frame
-  frame.rgb = cv::Mat(camera.height, camera.width, CV_8UC3, kBackgroundColour);
+  const cv::Mat table_colours = tableColours(look, kTableColour, camera_pose, camera, kHalf);
+  frame.rgb = look.background.empty()
+                  ? cv::Mat(camera.height, camera.width, CV_8UC3, kBackgroundColour)
+                  : look.background.clone();
   for (int v = 0; v < camera.height; ++v) {
     for (int u = 0; u < camera.width; ++u) {
       const int l = renderer.labels().at<int>(v, u);
       if (l == 0) continue;
-      const cv::Vec3b base = l == table_label ? kTableColour : colours[l - 1];
-      frame.rgb.at<cv::Vec3b>(v, u) = shade(base, renderer.normals().at<cv::Vec3f>(v, u), light);
+      const cv::Vec3b base = l == table_label ? table_colours.at<cv::Vec3b>(v, u) : colours[l - 1];
+      frame.rgb.at<cv::Vec3b>(v, u) = shade(base, renderer.normals().at<cv::Vec3f>(v, u), look);
     }
   }
   cv::Mat grain(frame.rgb.size(), CV_16SC3);

@@ -11,7 +11,7 @@ namespace stocs {
 namespace {
 
 /// Streams of the scene's seed, apart from the random views' streams.
-enum Stream : uint64_t { kArrangement = 0x5e0, kAbsent, kSegmentation, kImages };
+enum Stream : uint64_t { kArrangement = 0x5e0, kAbsent, kSegmentation, kImages, kLook };
 
 }  // namespace
 
@@ -20,7 +20,7 @@ std::vector<BopTarget> writeSequenceScene(const SceneWriter& writer, int scene) 
   const uint64_t scene_seed = streamSeed(params.seed, static_cast<uint64_t>(scene));
   Rng rng(streamSeed(scene_seed, kArrangement));
   std::vector<PlacedObject> objects = arrangeObjects(writer.models(), params.layout, rng);
-  std::vector<cv::Vec3b> colours = sceneColours(objects, rng);
+  std::vector<cv::Vec3b> colours = sceneColours(objects, params.look, rng);
   std::set<int> listed;
   for (const PlacedObject& o : objects) {
     if (o.obj_id > 0) listed.insert(o.obj_id);
@@ -39,6 +39,7 @@ std::vector<BopTarget> writeSequenceScene(const SceneWriter& writer, int scene) 
     view.colours = &frame.colours;
     view.camera_pose = script.camera(im);
     view.image_seed = streamSeed(streamSeed(scene_seed, kImages), im);
+    view.look_seed = streamSeed(scene_seed, kLook);  // one light and table for the sequence
     view.listed = &listed;
     view.absent_seed = streamSeed(scene_seed, kAbsent);
     view.segmentation_seeds = [&](int obj_id) {

@@ -31,7 +31,7 @@ class SegmentationSimulatorTest : public ::testing::Test {
                                  : cv::Vec3b(200, 200, 60));
     }
     const SyntheticFrame frame = renderSyntheticFrame(
-        objects, colours, randomCameraPose(layout, rng), defaultSynthCamera(), {}, 1);
+        objects, colours, randomCameraPose(layout, rng), defaultSynthCamera(), {}, {}, 1);
     scene_.labels = frame.labels;
     scene_.rgb = frame.rgb;
     for (int id : scene_.obj_ids) {

@@ -6,7 +6,6 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
@@ -28,22 +27,6 @@ SyntheticDatasetParams smallDataset(uint64_t seed) {
   p.layout.distractors = 1;
   p.seed = seed;
   return p;
-}
-
-std::string bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Every file below `root`, relative to it, with its bytes.
-std::map<std::string, std::string> files(const fs::path& root) {
-  std::map<std::string, std::string> out;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) out[fs::relative(e.path(), root).string()] = bytes(e.path());
-  }
-  return out;
 }
 
 /// The ground-truth instances rendered at their poses: depth (m) and labels (1 + gt index).
@@ -172,7 +155,8 @@ TEST(SyntheticDataset, SameSeedSameFilesOtherSeedOtherScenes) {
   writeSyntheticDataset(a, smallDataset(7));
   writeSyntheticDataset(b, smallDataset(7));
   writeSyntheticDataset(c, smallDataset(8));
-  const std::map<std::string, std::string> fa = files(a), fb = files(b), fc = files(c);
+  const std::map<std::string, std::string> fa = test::treeFiles(a), fb = test::treeFiles(b),
+                                           fc = test::treeFiles(c);
   EXPECT_EQ(fa.size(), fb.size());
   for (const auto& [name, content] : fa) EXPECT_TRUE(fb.at(name) == content) << name;
   EXPECT_NE(fa.at("test/000000/depth/000000.png"), fc.at("test/000000/depth/000000.png"));
@@ -186,7 +170,8 @@ TEST(SyntheticDataset, ModelsCanBeCopiedFromAFolder) {
   SyntheticDatasetParams params = smallDataset(3);
   params.images_per_scene = 1;
   writeSyntheticDataset(copied, params, from);
-  EXPECT_EQ(bytes(copied / "models" / "obj_000004.ply"), bytes(from / "obj_000004.ply"));
+  EXPECT_EQ(test::fileBytes(copied / "models" / "obj_000004.ply"),
+            test::fileBytes(from / "obj_000004.ply"));
   EXPECT_FALSE(fs::exists(copied / "models" / "obj_000002.ply"));
   // Four objects from two models: instances repeat.
   const std::vector<BopGtInstance> gt = BopDataset(copied).sceneGroundTruth(0).at(0);
@@ -222,7 +207,7 @@ TEST(SyntheticDataset, TargetsListEveryObjectAndAbsentOnesWithTheirMaps) {
     EXPECT_GT(t.inst_count, 0);
   }
   // The absent objects' maps are added files only: every other file is the same.
-  std::map<std::string, std::string> with = files(root), without = files(none);
+  std::map<std::string, std::string> with = test::treeFiles(root), without = test::treeFiles(none);
   for (const auto& [name, content] : without) {
     if (name == "test_targets_bop19.json") continue;
     EXPECT_EQ(with.at(name), content) << name;

@@ -15,6 +15,7 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/sim/depth_noise.h"
 #include "stocs/sim/scene_layout.h"
+#include "stocs/sim/scene_look.h"
 #include "stocs/sim/sequence_script.h"
 #include "stocs/sim/synthetic_frame.h"
 
@@ -36,6 +37,8 @@ struct SyntheticDatasetParams {
   /// With `sequence.enabled`, each scene is a sequence of `sequence.frames` consecutive frames
   /// (sequence_script.h) instead of `images_per_scene` random views.
   SequenceParams sequence;
+  /// Variation of the colour images: light, table and background, look-alike distractors.
+  SceneLookParams look;
 
   /// Key, range, unit and meaning of every field but the camera and the depth noise model (the
   /// options of `stocs synth`).

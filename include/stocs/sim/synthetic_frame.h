@@ -10,6 +10,7 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/sim/depth_noise.h"
 #include "stocs/sim/scene_layout.h"
+#include "stocs/sim/scene_look.h"
 
 namespace stocs {
 
@@ -24,12 +25,13 @@ struct SyntheticFrame {
   std::vector<long> silhouette_pixels;  ///< pixels of each object seen alone (no occlusion)
 };
 
-/// Renders `objects` (table frame) with `colours` (BGR, one per object) on a grey support plane
-/// through a camera at `camera_pose` (table to camera). Deterministic for a seed.
+/// Renders `objects` (table frame) with `colours` (BGR, one per object) on a support plane
+/// through a camera at `camera_pose` (table to camera), lit and backed as `look` says (the default
+/// look: a grey table on a dark background). Deterministic for a seed.
 SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,
                                     const std::vector<cv::Vec3b>& colours,
                                     const Eigen::Isometry3f& camera_pose,
                                     const CameraIntrinsics& camera, const DepthNoiseParams& noise,
-                                    uint64_t seed);
+                                    const SceneLook& look, uint64_t seed);
 
 }  // namespace stocs
