@@ -10,7 +10,8 @@
 # dropped.
 #   scripts/bench_latency.sh [FRAMES [RATE [BASES [CONSENSUS]]]]   (defaults: 60 frames at 5 Hz,
 #     the configuration's bases and consensus_bases, i.e. 100 and 8; CONSENSUS 0 runs every base)
-# STOCS_LATENCY_TRACKING=true runs the node with tracking.enabled (issue 30).
+# STOCS_LATENCY_TRACKING=true runs the node with tracking.enabled (issue 30); STOCS_LATENCY_DATASET
+# plays that generated dataset (e.g. a tracking sequence of scripts/bench_tracking.sh) instead.
 # Needs the workspace built by scripts/build.sh.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
@@ -25,9 +26,11 @@ tool="$WS/devel/lib/stocs_ros/stocs"
 out="$REPO/build/bench_latency"
 rm -rf "$out"
 mkdir -p "$out"
-"$tool" synth --out "$out/scene" --objects 3 --distractors 2 --seed 1 --quiet
+scene=${STOCS_LATENCY_DATASET:-$out/scene}
+[ -n "${STOCS_LATENCY_DATASET:-}" ] ||
+  "$tool" synth --out "$scene" --objects 3 --distractors 2 --seed 1 --quiet
 # The demo's configuration, restricted to the objects of the scene.
-/usr/bin/python3 - "$REPO/config/demo.yaml" "$out/scene/test/000000/scene_gt.json" > "$out/config.yaml" <<'PY'
+/usr/bin/python3 - "$REPO/config/demo.yaml" "$scene/test/000000/scene_gt.json" > "$out/config.yaml" <<'PY'
 import json, sys
 ids = {g["obj_id"] for image in json.load(open(sys.argv[2])).values() for g in image}
 for line in open(sys.argv[1]):
@@ -58,7 +61,7 @@ for mode in nodes nodelets; do
   [ "$mode" = nodelets ] && nodelet=true
   port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("", 0)); print(s.getsockname()[1])')
   export ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$out/ros-$mode"
-  roslaunch -p "$port" stocs_ros demo.launch dataset:="$out/scene" config:="$out/config.yaml" \
+  roslaunch -p "$port" stocs_ros demo.launch dataset:="$scene" config:="$out/config.yaml" \
     results:="$out/results-$mode.csv" frames:="$frames" rate:="$rate" timeout:=600 \
     nodelet:="$nodelet" preload:=true > "$out/roslaunch-$mode.log" 2>&1 || true
   line=$(grep -E "^latency " "$out/roslaunch-$mode.log") ||
