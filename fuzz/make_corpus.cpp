@@ -132,6 +132,9 @@ void bopSeeds(const fs::path& corpus) {
             R"([{"scene_id": 1, "image_id": 0, "category_id": 2, "bbox": [10, 5, 20.5, 30],)"
             R"( "score": 0.9, "time": 0.1}, {"scene_id": 1, "image_id": 0, "category_id": 5,)"
             R"( "bbox": [-4, 40, 80, 20], "score": 0.3}])");
+  writeSeed(corpus, "fuzz_param_file", "settings.yaml",
+            "flag: true\ncount: 3\nshare: 0.25\nseconds: 2.5\nname: net.onnx\n"
+            "names: [mug, '-', bowl]\nmode: b\n");
   writeSeed(corpus, "fuzz_bop_results", "results.csv",
             "scene_id,im_id,obj_id,score,R,t,time\n"
             "1,0,2,0.8,1 0 0 0 1 0 0 0 1,10 -20 700,1.5\n"

@@ -89,7 +89,8 @@ YAML::Node loadMap(const std::filesystem::path& file) {
 void readParamFields(const std::filesystem::path& file, const std::vector<ParamField>& fields) {
   const FieldReader reader(file);
   for (const auto& entry : loadMap(file)) {
-    const std::string key = entry.first.as<std::string>();
+    if (!entry.first.IsScalar()) reader.fail(entry.first, "?", "expected a key, not a list or map");
+    const std::string key = entry.first.Scalar();
     const auto field = std::find_if(fields.begin(), fields.end(),
                                     [&key](const ParamField& f) { return f.info.key == key; });
     if (field == fields.end()) reader.fail(entry.first, key, "unknown key");

@@ -203,6 +203,7 @@ TEST(SegmentationNetwork, SettingsFileMistakesNamed) {
            {"model: package://stocs_ros/models/segmenter.onnx\n",
             "model 'package://stocs_ros/models/segmenter.onnx' is a URL"},
            {"[1, 2]\n", "net.yaml: expected a map of keys"},
+           {good + "[a, b]: 1\n", "net.yaml:3: ?: expected a key, not a list or map"},
            {"model: [\n", "net.yaml: invalid YAML"}}) {
     EXPECT_NE(settingsError(text).find(message), std::string::npos)
         << text << " gave: " << settingsError(text);
