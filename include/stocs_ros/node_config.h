@@ -67,7 +67,8 @@ struct NodeConfig {
   std::string model_cache_setting;    ///< as written: a folder, "" (the default one) or "none"
   std::filesystem::path model_cache;  ///< the folder it names; empty: no cache
   stocs::PipelineParams estimation;
-  stocs::TrackingParams tracking;
+  /// The node tracks by default (a camera stream); the core and `stocs estimate` detect.
+  stocs::TrackingParams tracking = stocs::TrackingParams::forStream();
 
   /// Every key of the file but the objects and input.channels (lists): keys, ranges, meanings.
   static const stocs::ParamSet<NodeConfig>& schema();

@@ -94,14 +94,15 @@ std::string parametersMarkdown() {
       "{}## Inputs, outputs, cache\n\n{}\n## Estimation\n\nUnder `estimation:` in the file; "
       "the last column is the option of the `stocs` tool.\n\n{}\n## Tracking\n\nUnder "
       "`tracking:` in the file ([docs/ros.md](ros.md#tracking)); the last column is the option of "
-      "`stocs estimate`.\n\n{}\n## Segmentation network\n\nPrivate parameters of "
+      "`stocs estimate`, which detects every image unless given `--track`.\n\n{}\n## Segmentation "
+      "network\n\nPrivate parameters of "
       "`segmentation_node` ([docs/ros.md](ros.md#segmentation-node)); config/segmenter.yaml sets "
       "them for the package's own network.\n\n{}",
       kMarkdownHead, stocs::paramsMarkdown(node_keys, "", false),
       stocs::paramsMarkdown(stocs::PipelineParams::schema().describe(stocs::PipelineParams()),
                             "estimation.", true),
-      stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(stocs::TrackingParams()),
-                            "tracking.", true),
+      stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(node.tracking), "tracking.",
+                            true),
       stocs::paramsMarkdown(segmentationNodeKeys(), "", false));
 }
 

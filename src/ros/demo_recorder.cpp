@@ -36,6 +36,21 @@ DemoRecorder::DemoRecorder(const ros::NodeHandle& pnh) {
       true);
 }
 
+namespace {
+
+const char* stateName(uint8_t state) {
+  switch (state) {
+    case ObjectPose::TRACKED:
+      return "tracked";
+    case ObjectPose::REDETECTED:
+      return "redetected";
+    default:
+      return "detected";
+  }
+}
+
+}  // namespace
+
 void DemoRecorder::onObjects(const ObjectPoseArray::ConstPtr& message) {
   const double latency = (ros::Time::now() - message->header.stamp).toSec();
   latencies_.push_back(latency);
@@ -44,10 +59,10 @@ void DemoRecorder::onObjects(const ObjectPoseArray::ConstPtr& message) {
   for (const ObjectPose& o : message->objects) {
     const auto& p = o.pose.pose.position;
     fmt::print(
-        "  {} (id {}): confidence {:.2f}, score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm (std {:.1f} "
-        "mm), {:.0f} ms, {} hypotheses\n",
-        instanceName(o.name, o.instance), o.id, o.confidence, o.score, 1000 * p.x, 1000 * p.y,
-        1000 * p.z,
+        "  {} (id {}): {}, confidence {:.2f}, score {:.4f}, t [{:.1f} {:.1f} {:.1f}] mm (std "
+        "{:.1f} mm), {:.0f} ms, {} hypotheses\n",
+        instanceName(o.name, o.instance), o.id, stateName(o.state), o.confidence, o.score,
+        1000 * p.x, 1000 * p.y, 1000 * p.z,
         1000 * std::sqrt(o.pose.covariance[0] + o.pose.covariance[7] + o.pose.covariance[14]),
         1000 * o.estimation_time, o.hypotheses_verified);
   }

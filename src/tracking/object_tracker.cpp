@@ -27,6 +27,8 @@ const char* toString(TrackState state) {
       return "redetected";
     case TrackState::kLost:
       return "lost";
+    case TrackState::kUntracked:
+      return "untracked";
   }
   return "unknown";
 }
@@ -71,6 +73,7 @@ class ObjectTracker::Step {
                               *in_.model, *in_.params, in_.boundary, in_.camera);
       tracker_.frames_since_detection_ = 0;
       tracker_.confirm_detection_ = false;
+      tracker_.noteDetection(*search);
       moved = assign(*search) || moved;
       out.detected = true;
     }
@@ -146,6 +149,12 @@ class ObjectTracker::Step {
       e.instances.push_back(std::move(pose));
       out.states.push_back(track.state);
     }
+    if (tracker_.tracks_.empty() && tracker_.unfound_) {
+      InstancePose pose = *tracker_.unfound_;
+      pose.rejection = "not tracked: the last detection's best pose has " + pose.rejection;
+      e.instances.push_back(std::move(pose));
+      out.states.push_back(TrackState::kUntracked);
+    }
     e.takeFirstInstance();
     if (!out.detected && !out.searched && follower_) {
       e.segment_points = follower_->segment().size();
@@ -202,12 +211,20 @@ bool ObjectTracker::untracked() const {
 std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const PreparedModel& model,
                                       const PipelineParams& params) {
   frames_since_detection_ = 0;
+  noteDetection(detection);
   std::vector<char> settled;
   for (const Track& t : tracks_) settled.push_back(t.state != TrackState::kLost);
   TrackAssignment assignment(tracks_, settled, params_, model, params);
   std::vector<int> taken = assignment.assign(detection);
   confirm_detection_ = assignment.moved();
   return taken;
+}
+
+void ObjectTracker::noteDetection(const PoseEstimate& detection) {
+  unfound_.reset();
+  if (!detection.instances.empty() && !detection.instances.front().accepted) {
+    unfound_ = detection.instances.front();
+  }
 }
 
 bool ObjectTracker::redetectionDue() const {

@@ -26,9 +26,10 @@ FrameTracking StreamTracker::track(std::shared_ptr<const Frame> frame,
                                    const PipelineParams& params, double stamp,
                                    std::optional<double> previous_input,
                                    std::shared_ptr<const void> keep) {
-  // A frame that ends the tracks is detected in place: a detection in the background would be
-  // merged only into the next frame, which an input slower than max_gap ends again.
-  if (tracker_.timeJumped(stamp, previous_input)) {
+  // A stream's first frame, and one that ends the tracks, is detected in place: a detection in
+  // the background would be merged only into the next frame, which a single frame (an ~estimate
+  // like use) never sends and an input slower than max_gap ends again.
+  if (!tracker_.started() || tracker_.timeJumped(stamp, previous_input)) {
     return tracker_.track(*frame, objects, params, stamp, previous_input);
   }
   std::optional<FrameDetection> detection;

@@ -15,13 +15,18 @@ TrackAssignment::TrackAssignment(std::vector<Track>& tracks, std::vector<char>& 
       max_instances_(pipeline.stocs.instances),
       extent_(model.model),
       confidence_(pipeline.confidence),
-      same_place_(model.model, pipeline.stocs.instance_separation * model.model.diameter),
+      model_(model.model),
       separation_(pipeline.stocs.instance_separation * model.model.diameter) {}
+
+const InstanceSeparation& TrackAssignment::samePlace() const {
+  if (!same_place_) same_place_.emplace(model_, separation_);
+  return *same_place_;
+}
 
 float TrackAssignment::challenged(int k) const {
   ConfidenceEvidence evidence = tracks_[k].pose.evidence;
   evidence.consensus =
-      std::max(evidence.consensus, consensusShare(tracks_[k].pose.pose, *base_poses_, same_place_,
+      std::max(evidence.consensus, consensusShare(tracks_[k].pose.pose, *base_poses_, samePlace(),
                                                   extent_.centre(), separation_));
   return confidence_.confidence(evidence);
 }
@@ -100,7 +105,7 @@ std::vector<int> TrackAssignment::assign(const PoseEstimate& found) {
 
 void TrackAssignment::take(int k, const InstancePose& pose) {
   Track& track = tracks_[k];
-  moved_ = moved_ || !same_place_.samePlace(track.pose.pose, pose.pose);
+  moved_ = moved_ || !samePlace().samePlace(track.pose.pose, pose.pose);
   track.pose = pose;
   track.state = TrackState::kRedetected;
   track.motion.stop();  // a detection says nothing of the motion

@@ -7,6 +7,7 @@
 // pose is compared with its consensus among the detection's bases: a followed pose has no bases of
 // its own, and its zero consensus would let any detection win.
 
+#include <optional>
 #include <vector>
 
 #include "stocs/estimation/instance_separation.h"
@@ -37,6 +38,9 @@ class TrackAssignment {
   void take(int k, const InstancePose& pose);
   /// Track k's confidence with its consensus among the bases of the poses being assigned.
   float challenged(int k) const;
+  /// The model's same-place test, built on first use: a search or detection that found no
+  /// accepted pose (an absent object) needs none.
+  const InstanceSeparation& samePlace() const;
 
   std::vector<Track>& tracks_;
   std::vector<char>& settled_;
@@ -44,8 +48,9 @@ class TrackAssignment {
   int max_instances_;
   PoseProximity extent_;
   const ConfidenceParams& confidence_;
-  InstanceSeparation same_place_;
+  const ObjectModel& model_;
   float separation_;                                            // of instances, in metres
+  mutable std::optional<InstanceSeparation> same_place_;        // samePlace()
   const std::vector<Eigen::Isometry3f>* base_poses_ = nullptr;  // of the poses being assigned
   bool moved_ = false;
 };

@@ -440,35 +440,72 @@ TEST_F(TrackerTest, OneScheduledDetectionIsWantedAtATime) {
   EXPECT_EQ(wanted, (std::vector<std::string>{"block", "new"}));
 }
 
+TEST_F(TrackerTest, AStreamDetectsItsFirstFrameInPlace) {
+  StreamTracker tracker{TrackingParams{}};
+  const FrameTracking first = tracker.track(std::make_shared<const Frame>(frameAt(truth_)),
+                                            {{"block", model_.get()}}, estimator_.params(), 0.0);
+  EXPECT_FALSE(first.counts.reset);
+  ASSERT_EQ(first.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected});
+  EXPECT_TRUE(first.objects[0].detected);
+  EXPECT_LT(adds(first.objects[0].result.estimate.instances.at(0).pose, truth_),
+            0.02 * model_->model.diameter);
+}
+
 TEST_F(TrackerTest, AStreamDetectsInTheBackgroundAndMergesAtTheNextFrame) {
   StreamTracker tracker{TrackingParams{}};
   const std::vector<FrameObject> objects = {{"block", model_.get()}};
-  const auto frame = [&](const Eigen::Isometry3f& at) {
-    return std::make_shared<const Frame>(frameAt(at));
+  const auto frame = [&](const Eigen::Isometry3f& at, bool with_map = true) {
+    return std::make_shared<const Frame>(frameAt(at, with_map));
   };
-  const FrameTracking first = tracker.track(frame(truth_), objects, estimator_.params(), 0.0);
-  EXPECT_TRUE(first.objects.at(0).result.estimate.instances.empty());  // detection started
+  // The first frame, detected in place, has no block; the second starts a background detection.
+  tracker.track(frame(truth_, false), objects, estimator_.params(), 0.0);
+  const FrameTracking started =
+      tracker.track(frame(truth_), objects, estimator_.params(), kFramePeriod);
+  EXPECT_FALSE(started.objects.at(0).detected);
   tracker.waitForDetection();
   const Eigen::Isometry3f next = moved(truth_, 4, 2);
   const FrameTracking second =
-      tracker.track(frame(next), objects, estimator_.params(), kFramePeriod);
+      tracker.track(frame(next), objects, estimator_.params(), 2 * kFramePeriod);
   ASSERT_EQ(second.objects.at(0).states, std::vector<TrackState>{TrackState::kRedetected});
   EXPECT_LT(adds(second.objects[0].result.estimate.instances.at(0).pose, next),
             0.02 * model_->model.diameter);
   // That frame started the detection confirming the new track; merged at the next frame.
   tracker.waitForDetection();
-  tracker.track(frame(next), objects, estimator_.params(), 2 * kFramePeriod);
+  tracker.track(frame(next), objects, estimator_.params(), 3 * kFramePeriod);
   const FrameTracking fourth =
-      tracker.track(frame(next), objects, estimator_.params(), 3 * kFramePeriod);
+      tracker.track(frame(next), objects, estimator_.params(), 4 * kFramePeriod);
   EXPECT_EQ(fourth.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
   EXPECT_FALSE(tracker.takeDetectionError());
+}
+
+// An object without a track has its last detection's best pose, rejected, in every frame of a
+// stream: in the frame detected in place and in the followed frames after it.
+TEST_F(TrackerTest, AnUntrackedObjectReportsItsLastDetectionsRejectionInEveryFrame) {
+  PipelineParams params = estimator_.params();
+  params.confidence.min_confidence = 0.999f;  // the detection's pose is found and rejected
+  StreamTracker tracker{TrackingParams{}};
+  const auto frame = std::make_shared<const Frame>(frameAt(truth_));
+  for (int k = 0; k < 3; ++k) {
+    const FrameTracking t =
+        tracker.track(frame, {{"block", model_.get()}}, params, k * kFramePeriod);
+    ASSERT_EQ(t.objects.at(0).states, std::vector<TrackState>{TrackState::kUntracked}) << k;
+    const InstancePose& pose = t.objects[0].result.estimate.instances.at(0);
+    EXPECT_FALSE(pose.accepted);
+    EXPECT_GT(pose.confidence, 0.0f);
+    EXPECT_LT(pose.confidence, params.confidence.min_confidence);
+    EXPECT_EQ(pose.rejection.rfind("not tracked: the last detection's best pose has confidence", 0),
+              0u)
+        << pose.rejection;
+    EXPECT_EQ(t.counts.lost, 0);
+  }
+  tracker.waitForDetection();
 }
 
 TEST_F(TrackerTest, AStreamSlowerThanTheGapIsDetectedInEachFrame) {
   StreamTracker tracker{TrackingParams{}};  // max_gap 0.5 s
   const std::vector<FrameObject> objects = {{"block", model_.get()}};
   const auto frame = std::make_shared<const Frame>(frameAt(truth_));
-  tracker.track(frame, objects, estimator_.params(), 0.0);  // detection starts in the background
+  tracker.track(frame, objects, estimator_.params(), 0.0);
   // Each frame a second later ends the tracks: detected in place, not left to a background
   // detection that the next frame would end again.
   for (int k = 1; k <= 2; ++k) {
@@ -495,7 +532,6 @@ TEST_F(TrackerTest, AStreamFollowsFramesWhileItDetects) {
     pose = moved(pose, 1, 0.5f);
     last = tracker.track(std::make_shared<const Frame>(frameAt(pose)), objects, estimator_.params(),
                          stamp);
-    if (k == 0) tracker.waitForDetection();  // the first detection gives the track
   }
   ASSERT_EQ(last.objects.at(0).result.estimate.instances.size(), 1u);
   EXPECT_LT(adds(last.objects[0].result.estimate.instances[0].pose, pose),
@@ -514,8 +550,12 @@ TEST_F(TrackerTest, AStreamTrackerDestroyedWhileItDetectsReleasesItsFrame) {
   const std::weak_ptr<int> keep_held = keep;
   {
     StreamTracker tracker{TrackingParams{}};
-    tracker.track(std::move(frame), {{"block", model_.get()}}, estimator_.params(), 0.0,
-                  std::nullopt, std::move(keep));
+    const std::vector<FrameObject> objects = {{"block", model_.get()}};
+    // The first frame (no block) is detected in place; the second starts a background detection.
+    tracker.track(std::make_shared<const Frame>(frameAt(truth_, false)), objects,
+                  estimator_.params(), 0.0);
+    tracker.track(std::move(frame), objects, estimator_.params(), kFramePeriod, std::nullopt,
+                  std::move(keep));
   }
   EXPECT_TRUE(frame_held.expired());
   EXPECT_TRUE(keep_held.expired());

@@ -78,6 +78,8 @@ class FrameTracker {
   /// Each object's tracker, by name.
   const std::map<std::string, ObjectTracker>& objects() const { return objects_; }
 
+  /// Whether a frame was tracked since the construction or the last reset.
+  bool started() const { return last_stamp_.has_value(); }
   /// Whether a frame at `stamp` (the input's previous frame at `previous_input`, else the last
   /// tracked one) must not continue the tracks.
   bool timeJumped(double stamp, std::optional<double> previous_input) const;

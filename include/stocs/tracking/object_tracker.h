@@ -14,6 +14,7 @@
 // new tracks up to StocsParams::instances.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,9 +28,10 @@ enum class TrackState {
   kTracked,     ///< followed from its predicted pose, and accepted
   kRedetected,  ///< found again (or for the first time) by StoCS, and accepted
   kLost,        ///< no accepted pose this frame: not published; detection keeps trying
+  kUntracked,   ///< no track: the best pose of the object's last detection, which rejected it
 };
 
-/// "tracked", "redetected", "lost".
+/// "tracked", "redetected", "lost", "untracked".
 const char* toString(TrackState state);
 
 struct Track {
@@ -42,7 +44,9 @@ struct Track {
 /// One object's outcome of one frame.
 struct ObjectTracking {
   /// One instance per track in index order (instance k is track k): accepted unless lost (a lost
-  /// instance holds the last accepted pose, rejected with the reason). The counters and stage
+  /// instance holds the last accepted pose, rejected with the reason). An object without tracks
+  /// has instead its last full detection's best pose, rejected (kUntracked), so that a stream's
+  /// every frame says why an absent object has no pose. The counters and stage
   /// times of the last search that ran (full detection, else the local search), else the segment
   /// size of the followed box; `seconds` is the whole step.
   PoseEstimate estimate;
@@ -95,6 +99,10 @@ class ObjectTracker {
   /// The last detection started a track or moved one: the next frame detects again, as a single
   /// detection may land on a look-alike that following would then keep.
   bool confirm_detection_ = false;
+  /// The best pose of the last full detection when it was rejected (reported while no track).
+  std::optional<InstancePose> unfound_;
+  /// Keeps `detection`'s best pose in unfound_ when rejected.
+  void noteDetection(const PoseEstimate& detection);
   std::unique_ptr<Step> step_;  // between follow() and conclude()
 };
 

@@ -30,9 +30,9 @@ class StreamTracker {
   /// Follows the objects of `frame` as FrameTracker::follow does (same errors), merging the last
   /// detection that finished; then, when no detection runs and one is wanted, starts it on
   /// `frame` with one thread fewer than the tracking uses (the other follows the next frames).
-  /// `keep` is held until that detection ends (what the objects' models belong to). A frame that
-  /// ends the tracks (FrameTracker::timeJumped: a gap or time going back) is instead detected in
-  /// place, as FrameTracker::track does.
+  /// `keep` is held until that detection ends (what the objects' models belong to). The first
+  /// frame, and a frame that ends the tracks (FrameTracker::timeJumped: a gap or time going back),
+  /// are instead detected in place, as FrameTracker::track does.
   FrameTracking track(std::shared_ptr<const Frame> frame, const std::vector<FrameObject>& objects,
                       const PipelineParams& params, double stamp,
                       std::optional<double> previous_input = std::nullopt,

@@ -7,7 +7,8 @@
 namespace stocs {
 
 struct TrackingParams {
-  /// Track (the node, `stocs estimate --track`) instead of detecting every object in every frame.
+  /// Track instead of detecting every object in every frame. Off here and in `stocs estimate`
+  /// (`--track`), whose images are views rather than a stream; the node's default is on.
   bool enabled = false;
   /// Full detection (StoCS on the whole image) also runs every this many frames while an object is
   /// tracked, so that a track that slid onto a look-alike is caught; 0: only when tracking fails.
@@ -28,6 +29,13 @@ struct TrackingParams {
   /// A detected pose continues a track when its model centre lies within this share of the
   /// object's diameter of the track's (the track keeps its instance index).
   float match_distance = 0.3f;
+
+  /// The defaults with `enabled` on: what a stream of frames (the node) starts from.
+  static TrackingParams forStream() {
+    TrackingParams p;
+    p.enabled = true;
+    return p;
+  }
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<TrackingParams>& schema();

@@ -223,14 +223,11 @@ TEST_F(FrameEstimation, BadSegmentationMessagesAreNamed) {
 }
 
 TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
-  const auto s = setup("tracking: {enabled: true}\n");
-  ASSERT_TRUE(s->config.tracking.enabled);
+  const auto s = setup("");
+  ASSERT_TRUE(s->config.tracking.enabled);  // the node's default
   stocs::StreamTracker tracker(s->config.tracking);
-  // The first frame starts the background detection: nothing to publish yet.
-  const FrameResult started = trackFrame(cloudJob(3.0), s, tracker);
-  EXPECT_TRUE(toObjectPoseArray(started, *s).objects.empty());
-  tracker.waitForDetection();
-  const FrameResult first = trackFrame(cloudJob(3.0 + 1.0 / 30), s, tracker);
+  // The first frame is detected in place.
+  const FrameResult first = trackFrame(cloudJob(3.0), s, tracker);
   expectFoundNearTruth(first);
   EXPECT_EQ(first.objects[0].states,
             std::vector<stocs::TrackState>{stocs::TrackState::kRedetected});
@@ -238,16 +235,16 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   EXPECT_EQ(first.tracking->redetected, 1);
   EXPECT_EQ(toObjectPoseArray(first, *s).objects.at(0).state, ObjectPose::REDETECTED);
 
-  // That frame started the detection confirming the new track; merged at the next frame.
-  tracker.waitForDetection();
-  trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker);
-  const FrameResult next = trackFrame(cloudJob(3.0 + 3.0 / 30), s, tracker);
+  // The next is followed, and starts the detection that confirms the new track.
+  const FrameResult next = trackFrame(cloudJob(3.0 + 1.0 / 30), s, tracker);
   expectFoundNearTruth(next);
   EXPECT_EQ(next.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kTracked});
   EXPECT_EQ(toObjectPoseArray(next, *s).objects.at(0).state, ObjectPose::TRACKED);
+  tracker.waitForDetection();
+  expectFoundNearTruth(trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker));  // merges it
 
   // The map vanishes: the box is lost, listed as rejected and lost, with no pose published.
-  EstimationJob gone = cloudJob(3.0 + 4.0 / 30);
+  EstimationJob gone = cloudJob(3.0 + 3.0 / 30);
   gone.frame.probabilities[0] = image("32FC1", cv::Mat(240, 320, CV_32FC1, cv::Scalar(0)));
   const FrameResult lost = trackFrame(gone, s, tracker);
   EXPECT_EQ(lost.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kLost});
