@@ -9,11 +9,12 @@ runs it; models/README.md records what made the committed file.
 With --val, every --val-every epochs the network is run on whole validation images (datasets of
 seeds that no training, test, demo or measurement uses) and the pixel precision, recall and F1 of
 each object (its probability above 0.5 against its visible mask, pooled over the images) are
-printed; the epoch with the best score is the one exported. The score is the lowest F1 over the
-objects: the lowest, so that no object is given up for the others' sake (the demo lost its block
-to a look-alike, candidates trained on varied looks lost part of the bowl or the long box); F1
-rather than recall, because recall alone rewards marking look-alike distractors as the object,
-which is how the demo's block was lost, and precision alone rewards marking too little.
+printed; the epoch with the best score is the one exported (with --export last, the last epoch: the
+validation figures are then only reported, as for the committed network). The score is the lowest
+F1 over the objects: the lowest, so that no object is given up for the others' sake (the demo lost
+its block to a look-alike, candidates trained on varied looks lost part of the bowl or the long
+box); F1 rather than recall, because recall alone rewards marking look-alike distractors as the
+object, which is how the demo's block was lost, and precision alone rewards marking too little.
 """
 import argparse
 import copy
@@ -167,7 +168,7 @@ def train_epoch(net, opt, sched, frames, weights, a, rng):
 
 def train(net, frames, val_frames, a, rng):
     """Trains for a.epochs (or a.minutes) and returns the weights of the epoch with the best
-    validation score (the last epoch's without validation images)."""
+    validation score (the last epoch's without validation images or with --export last)."""
     weights = class_weights(frames, a.classes)
     opt = torch.optim.AdamW(net.parameters(), lr=3e-3, weight_decay=1e-4)
     sched = torch.optim.lr_scheduler.OneCycleLR(
@@ -182,7 +183,7 @@ def train(net, frames, val_frames, a, rng):
         if val_frames and (epoch % a.val_every == 0 or last):
             score = validation_score(pixel_counts(net, val_frames, a.classes))
             print(f"  validation: lowest F1 {score:.4f}", flush=True)
-            if score > best_score:
+            if score > best_score and a.export == "best":
                 best, best_score, best_epoch = copy.deepcopy(net.state_dict()), score, epoch
         if minutes > a.minutes:
             print("time limit reached", flush=True)
@@ -199,11 +200,15 @@ def main():
     ap.add_argument("--data", nargs="+", required=True, help="BOP datasets from stocs synth")
     ap.add_argument("--val", nargs="*", default=[], help="validation datasets (other seeds)")
     ap.add_argument("--val-every", type=int, default=1, help="validate every this many epochs")
+    ap.add_argument("--export", choices=("best", "last"), default="best",
+                    help="the epoch to export: the best on validation, or the last")
     ap.add_argument("--out", required=True, help="ONNX file to write")
     ap.add_argument("--classes", type=int, default=7, help="background and obj_ids 1..classes-1")
     ap.add_argument("--width", type=int, default=160)
     ap.add_argument("--height", type=int, default=120)
     ap.add_argument("--crop", type=int, nargs=2, default=(112, 88), help="training window w h")
+    ap.add_argument("--widths", type=int, nargs=4, default=(8, 16, 32, 48),
+                    help="channels at the four resolutions (the ONNX file grows with them)")
     ap.add_argument("--epochs", type=int, default=40)
     ap.add_argument("--batch", type=int, default=8)
     ap.add_argument("--minutes", type=float, default=25, help="stop training after this long")
@@ -219,7 +224,7 @@ def main():
     frames = [f for d in a.data for f in load_frames(d, size)]
     val_frames = [f for d in a.val for f in load_frames(d, size)]
     print(f"{len(frames)} training images, {len(val_frames)} validation images", flush=True)
-    net = SmallUNet(a.classes)
+    net = SmallUNet(a.classes, tuple(a.widths))
     print(f"{sum(p.numel() for p in net.parameters())} parameters", flush=True)
     net = train(net, frames, val_frames, a, rng).eval()
     dummy = torch.zeros(1, 3, a.height, a.width)
