@@ -1,12 +1,31 @@
 #!/usr/bin/env bash
 # Trains the package's segmentation network (training/train_segmenter.py) on scenes from
 # `stocs synth` and writes models/segmenter.onnx. CI never runs this: it loads the committed file.
-# Usage: scripts/train_segmenter.sh [OUT.onnx]   (STOCS_TRAIN_THREADS: torch threads, default 1,
-# which trains fastest on a machine others are using;
-# STOCS_TRAIN_MINUTES: training time limit, default 25). Runs under `nice`.
+# Usage: scripts/train_segmenter.sh [OUT.onnx]
+#   STOCS_TRAIN_RECIPE: `committed` (default) trains the committed network's recipe and writes
+#     models/segmenter.onnx byte for byte (its last epoch; the validation scenes are only
+#     reported on); `varied` trains the recipe that scores best on the validation scenes (its
+#     best epoch there), whose network fails the unit test's recall floor (docs/simulator.md): it
+#     needs OUT, so that it never replaces the committed file.
+#   STOCS_TRAIN_THREADS: torch threads, default 1, which trains fastest on a machine others use;
+#   STOCS_TRAIN_MINUTES: training time limit, default 25. Runs under `nice`.
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 
+RECIPE="${STOCS_TRAIN_RECIPE:-committed}"
+case "$RECIPE" in
+  committed) ;;
+  varied)
+    [ $# -ge 1 ] || {
+      echo "train_segmenter.sh: the varied recipe needs an OUT file (its network fails the unit test)" >&2
+      exit 2
+    }
+    ;;
+  *)
+    echo "train_segmenter.sh: unknown STOCS_TRAIN_RECIPE '$RECIPE' (committed or varied)" >&2
+    exit 2
+    ;;
+esac
 OUT="${1:-$REPO/models/segmenter.onnx}"
 DATA="$REPO/build/segmenter_training"
 STOCS="$WS/devel/lib/stocs_ros/stocs"
@@ -25,19 +44,45 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 [ -x "$STOCS" ] || "$REPO/scripts/build.sh"
 
-# Seeds 1001-1004: the scenes of seeds 1-100 (tests, demo, measurements) stay unseen. Four
-# mixes of crowding, distractors and views (closer, farther, lower and higher than the defaults).
+# Training seeds 1001-1006, validation seeds 2001-2003: the scenes of seeds 1-140 (tests, demo,
+# measurements, calibration) stay unseen. The committed recipe: four mixes of crowding, distractors
+# and views (closer, farther, lower and higher than the defaults) in the default look. The varied
+# recipe adds one with every distractor a look-alike and one with varied light, tables and
+# backgrounds and trains 60 epochs; it scored best of six on the validation sets' lowest
+# per-object F1 (docs/simulator.md).
 rm -rf "$DATA"
 mkdir -p "$DATA"
 synth() { nice -n 10 "$STOCS" synth --quiet --absent 0 --segmentation clean "$@"; }
-synth --out "$DATA/a" --seed 1001 --scenes 40 --images 3 --objects 4 --distractors 3 \
-  --min-distance 0.45 --max-distance 1.1 --min-elevation 20 --max-elevation 85
+WIDE=(--min-distance 0.45 --max-distance 1.1 --min-elevation 20 --max-elevation 85)
+VARIED=(--light-direction 45 --light-intensity 0.35 --light-colour 0.12 --backgrounds true)
+synth --out "$DATA/a" --seed 1001 --scenes 40 --images 3 --objects 4 --distractors 3 "${WIDE[@]}"
 synth --out "$DATA/b" --seed 1002 --scenes 30 --images 3 --objects 6 --distractors 2
 synth --out "$DATA/c" --seed 1003 --scenes 20 --images 3 --objects 2 --distractors 5 \
   --min-distance 0.5 --max-distance 1.0
 synth --out "$DATA/d" --seed 1004 --scenes 30 --images 3 --objects 6 --distractors 4
+TRAIN_SETS=(a b c d)
+EPOCHS=40
+EXPORT=last
+if [ "$RECIPE" = varied ]; then
+  TRAIN_SETS+=(varied lookalikes)
+  EPOCHS=60
+  EXPORT=best
+  synth --out "$DATA/lookalikes" --seed 1005 --scenes 30 --images 3 --objects 6 --distractors 3 \
+    --lookalike-share 1
+  synth --out "$DATA/varied" --seed 1006 --scenes 50 --images 3 --objects 6 --distractors 3 \
+    "${WIDE[@]}" "${VARIED[@]}" --lookalike-share 0.8
+fi
+# Validation: the demo's and the tests' kind of scene in the default look, varied looks, and
+# every distractor a look-alike.
+synth --out "$DATA/val_default" --seed 2001 --scenes 20 --images 3 --objects 6 --distractors 2
+synth --out "$DATA/val_varied" --seed 2002 --scenes 15 --images 3 --objects 6 --distractors 3 \
+  "${WIDE[@]}" "${VARIED[@]}" --lookalike-share 0.8
+synth --out "$DATA/val_lookalikes" --seed 2003 --scenes 15 --images 3 --objects 4 \
+  --distractors 3 "${WIDE[@]}" --lookalike-share 1
 
 mkdir -p "$(dirname "$OUT")"
 OMP_NUM_THREADS="${STOCS_TRAIN_THREADS:-1}" nice -n 10 /usr/bin/python3 \
-  "$REPO/training/train_segmenter.py" --data "$DATA/a" "$DATA/b" "$DATA/c" "$DATA/d" --out "$OUT" \
+  "$REPO/training/train_segmenter.py" --out "$OUT" \
+  --data "${TRAIN_SETS[@]/#/$DATA/}" --epochs "$EPOCHS" --export "$EXPORT" \
+  --val "$DATA"/{val_default,val_varied,val_lookalikes} \
   --seed 1 --threads "${STOCS_TRAIN_THREADS:-1}" --minutes "${STOCS_TRAIN_MINUTES:-25}"

@@ -1,5 +1,5 @@
 // The package's own segmentation network (models/segmenter.onnx, scripts/train_segmenter.sh) on a
-// generated scene of a seed it was not trained on (training used seeds 1001-1003): it loads with
+// generated scene of a seed it was not trained on (training used seeds 1001-1004): it loads with
 // config/segmenter.yaml's settings (SegmentationNetworkParams' defaults) and segments every object
 // above a pixel precision and recall floor; `stocs estimate --prob onnx:` names a bad model.
 #include <fmt/format.h>
