@@ -71,9 +71,7 @@ class ObjectTracker::Step {
     if (detect && (unsettled() || scheduled)) {
       search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
                               *in_.model, *in_.params, in_.boundary, in_.camera);
-      tracker_.frames_since_detection_ = 0;
-      tracker_.confirm_detection_ = false;
-      tracker_.noteDetection(*search);
+      tracker_.detectionRan(*search);
       moved = assign(*search) || moved;
       out.detected = true;
     }
@@ -210,8 +208,7 @@ bool ObjectTracker::untracked() const {
 
 std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const PreparedModel& model,
                                       const PipelineParams& params) {
-  frames_since_detection_ = 0;
-  noteDetection(detection);
+  detectionRan(detection);
   std::vector<char> settled;
   for (const Track& t : tracks_) settled.push_back(t.state != TrackState::kLost);
   TrackAssignment assignment(tracks_, settled, params_, model, params);
@@ -220,7 +217,9 @@ std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const Prepa
   return taken;
 }
 
-void ObjectTracker::noteDetection(const PoseEstimate& detection) {
+void ObjectTracker::detectionRan(const PoseEstimate& detection) {
+  frames_since_detection_ = 0;
+  confirm_detection_ = false;
   unfound_.reset();
   if (!detection.instances.empty() && !detection.instances.front().accepted) {
     unfound_ = detection.instances.front();

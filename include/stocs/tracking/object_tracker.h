@@ -101,8 +101,9 @@ class ObjectTracker {
   bool confirm_detection_ = false;
   /// The best pose of the last full detection when it was rejected (reported while no track).
   std::optional<InstancePose> unfound_;
-  /// Keeps `detection`'s best pose in unfound_ when rejected.
-  void noteDetection(const PoseEstimate& detection);
+  /// A full detection ran: restarts the schedule, clears the confirmation it answers, and keeps
+  /// `detection`'s best pose in unfound_ when rejected.
+  void detectionRan(const PoseEstimate& detection);
   std::unique_ptr<Step> step_;  // between follow() and conclude()
 };
 
