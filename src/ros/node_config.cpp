@@ -10,6 +10,7 @@
 
 #include "stocs/io/mesh_io.h"
 #include "stocs/util/error.h"
+#include "stocs/util/param_file.h"
 #include "stocs_ros/resource_path.h"
 
 namespace stocs_ros {
@@ -17,19 +18,6 @@ namespace fs = std::filesystem;
 using stocs::InputError;
 
 namespace {
-
-template <class T>
-const char* expectedType() {
-  if constexpr (std::is_same_v<T, bool>) {
-    return "true or false";
-  } else if constexpr (std::is_integral_v<T>) {
-    return "an integer";
-  } else if constexpr (std::is_floating_point_v<T>) {
-    return "a number";
-  } else {
-    return "a string";
-  }
-}
 
 /// Reads the keys of one YAML map, each named in errors by its full path ("input.sync.tolerance"),
 /// and rejects keys nobody asked for, so a misspelt parameter cannot be silently ignored.
@@ -62,18 +50,12 @@ class MapReader {
 
   template <class T>
   T convert(const YAML::Node& n, const std::string& name) const {
-    if (!n.IsScalar()) fail(n, name, fmt::format("expected {}", expectedType<T>()));
-    try {
-      return n.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(n, name, fmt::format("expected {}, got '{}'", expectedType<T>(), n.Scalar()));
-    }
+    return stocs::readYamlScalar<T>(file_, n, name);
   }
 
   [[noreturn]] void fail(const YAML::Node& n, const std::string& name,
                          const std::string& problem) const {
-    throw InputError(
-        fmt::format("{}:{}: {}: {}", file_.string(), n.Mark().line + 1, name, problem));
+    stocs::failAtYamlNode(file_, n, name, problem);
   }
 
   std::string fullName(const std::string& key) const {
@@ -249,9 +231,7 @@ class SchemaReader {
       const std::string name = dot == std::string::npos ? key : key.substr(dot + 1);
       const YAML::Node node = map.node(name);
       if (!node) continue;
-      const stocs::ParamRef field = entry.field(target);
-      std::visit([&](auto ref) { assign(map, node, key, entry.info, ref); }, field);
-      if (auto problem = entry.info.problem(field)) map.fail(node, key, *problem);
+      stocs::assignParamNode(map.file(), node, key, entry.info, entry.field(target));
     }
   }
 
@@ -271,29 +251,6 @@ class SchemaReader {
   }
 
  private:
-  template <class T>
-  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
-                     const stocs::ParamInfo&, T* field) {
-    *field = map.convert<T>(node, key);
-  }
-  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
-                     const stocs::ParamInfo&, std::vector<std::string>* field) {
-    if (!node.IsSequence()) map.fail(node, key, "expected a list");
-    field->clear();
-    for (size_t k = 0; k < node.size(); ++k) {
-      field->push_back(map.convert<std::string>(node[k], fmt::format("{}[{}]", key, k)));
-    }
-  }
-  static void assign(MapReader& map, const YAML::Node& node, const std::string& key,
-                     const stocs::ParamInfo& info, const stocs::ChoiceRef& field) {
-    const std::string value = map.convert<std::string>(node, key);
-    if (std::find(info.choices.begin(), info.choices.end(), value) == info.choices.end()) {
-      map.fail(node, key,
-               fmt::format("'{}' is not one of {}", value, fmt::join(info.choices, ", ")));
-    }
-    field.set(value);
-  }
-
   MapReader& root_;
   std::map<std::string, MapReader> maps_;
 };

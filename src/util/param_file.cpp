@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <type_traits>
 
 #include "stocs/util/error.h"
@@ -12,64 +13,43 @@
 namespace stocs {
 namespace {
 
-/// Sets fields from one file's map, each error naming the file, the line and the key.
-class FieldReader {
- public:
-  explicit FieldReader(const std::filesystem::path& file) : file_(file) {}
-
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& key,
-                         const std::string& problem) const {
-    throw InputError(fmt::format("{}:{}: {}: {}", file_.string(), n.Mark().line + 1, key, problem));
+template <class T>
+const char* expectedType() {
+  if constexpr (std::is_same_v<T, bool>) {
+    return "true or false";
+  } else if constexpr (std::is_integral_v<T>) {
+    return "an integer";
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return "a number";
+  } else {
+    return "a string";
   }
+}
 
-  void assign(const YAML::Node& n, const ParamField& f) const {
-    std::visit([&](auto target) { assignTo(n, f.info, target); }, f.field);
-    if (auto problem = f.info.problem(f.field)) fail(n, f.info.key, *problem);
+template <class T>
+void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+              const ParamInfo&, T* target) {
+  *target = readYamlScalar<T>(file, n, key);
+}
+
+void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+              const ParamInfo&, std::vector<std::string>* target) {
+  if (!n.IsSequence()) failAtYamlNode(file, n, key, "expected a list");
+  target->clear();
+  for (size_t k = 0; k < n.size(); ++k) {
+    target->push_back(readYamlScalar<std::string>(file, n[k], fmt::format("{}[{}]", key, k)));
   }
+}
 
- private:
-  template <class T>
-  T scalar(const YAML::Node& n, const std::string& key, const char* type) const {
-    if (!n.IsScalar()) fail(n, key, fmt::format("expected {}", type));
-    try {
-      return n.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(n, key, fmt::format("expected {}, got '{}'", type, n.Scalar()));
-    }
+void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+              const ParamInfo& info, const ChoiceRef& target) {
+  const auto value = readYamlScalar<std::string>(file, n, key);
+  if (std::find(info.choices.begin(), info.choices.end(), value) == info.choices.end()) {
+    failAtYamlNode(file, n, key,
+                   fmt::format("'{}' is not one of {}", value, fmt::join(info.choices, ", ")));
   }
-
-  template <class T>
-  void assignTo(const YAML::Node& n, const ParamInfo& info, T* target) const {
-    if constexpr (std::is_same_v<T, bool>) {
-      *target = scalar<bool>(n, info.key, "true or false");
-    } else if constexpr (std::is_floating_point_v<T>) {
-      *target = static_cast<T>(scalar<double>(n, info.key, "a number"));
-    } else if constexpr (std::is_integral_v<T>) {
-      *target = scalar<T>(n, info.key, "an integer");
-    } else {
-      *target = scalar<std::string>(n, info.key, "a string");
-    }
-  }
-
-  void assignTo(const YAML::Node& n, const ParamInfo& info,
-                std::vector<std::string>* target) const {
-    if (!n.IsSequence()) fail(n, info.key, "expected a list");
-    target->clear();
-    for (size_t k = 0; k < n.size(); ++k) {
-      target->push_back(scalar<std::string>(n[k], fmt::format("{}[{}]", info.key, k), "a string"));
-    }
-  }
-
-  void assignTo(const YAML::Node& n, const ParamInfo& info, const ChoiceRef& target) const {
-    const auto value = scalar<std::string>(n, info.key, "a string");
-    if (std::find(info.choices.begin(), info.choices.end(), value) == info.choices.end()) {
-      fail(n, info.key, fmt::format("'{}' is not one of {}", value, fmt::join(info.choices, ", ")));
-    }
-    target.set(value);
-  }
-
-  std::filesystem::path file_;
-};
+  target.set(value);
+}
 
 YAML::Node loadMap(const std::filesystem::path& file) {
   YAML::Node root;
@@ -86,15 +66,51 @@ YAML::Node loadMap(const std::filesystem::path& file) {
 
 }  // namespace
 
+void failAtYamlNode(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+                    const std::string& problem) {
+  throw InputError(fmt::format("{}:{}: {}: {}", file.string(), n.Mark().line + 1, key, problem));
+}
+
+template <class T>
+T readYamlScalar(const std::filesystem::path& file, const YAML::Node& n, const std::string& key) {
+  if (!n.IsScalar()) failAtYamlNode(file, n, key, fmt::format("expected {}", expectedType<T>()));
+  try {
+    return n.as<T>();
+  } catch (const YAML::Exception&) {
+    failAtYamlNode(file, n, key,
+                   fmt::format("expected {}, got '{}'", expectedType<T>(), n.Scalar()));
+  }
+}
+
+template bool readYamlScalar<bool>(const std::filesystem::path&, const YAML::Node&,
+                                   const std::string&);
+template int readYamlScalar<int>(const std::filesystem::path&, const YAML::Node&,
+                                 const std::string&);
+template float readYamlScalar<float>(const std::filesystem::path&, const YAML::Node&,
+                                     const std::string&);
+template double readYamlScalar<double>(const std::filesystem::path&, const YAML::Node&,
+                                       const std::string&);
+template uint64_t readYamlScalar<uint64_t>(const std::filesystem::path&, const YAML::Node&,
+                                           const std::string&);
+template std::string readYamlScalar<std::string>(const std::filesystem::path&, const YAML::Node&,
+                                                 const std::string&);
+
+void assignParamNode(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+                     const ParamInfo& info, const ParamRef& field) {
+  std::visit([&](auto target) { assignTo(file, n, key, info, target); }, field);
+  if (auto problem = info.problem(field)) failAtYamlNode(file, n, key, *problem);
+}
+
 void readParamFields(const std::filesystem::path& file, const std::vector<ParamField>& fields) {
-  const FieldReader reader(file);
   for (const auto& entry : loadMap(file)) {
-    if (!entry.first.IsScalar()) reader.fail(entry.first, "?", "expected a key, not a list or map");
+    if (!entry.first.IsScalar()) {
+      failAtYamlNode(file, entry.first, "?", "expected a key, not a list or map");
+    }
     const std::string key = entry.first.Scalar();
     const auto field = std::find_if(fields.begin(), fields.end(),
                                     [&key](const ParamField& f) { return f.info.key == key; });
-    if (field == fields.end()) reader.fail(entry.first, key, "unknown key");
-    reader.assign(entry.second, *field);
+    if (field == fields.end()) failAtYamlNode(file, entry.first, key, "unknown key");
+    assignParamNode(file, entry.second, key, field->info, field->field);
   }
 }
 

@@ -1,12 +1,17 @@
 #pragma once
-// A parameter struct read from a flat YAML file through its ParamSet schema (the format of the
-// ROS nodes' private parameter files, e.g. config/segmenter.yaml), for the tools that take such a
-// file without ROS.
+// Parameters read from YAML through their ParamSet schema: a flat file for the tools that take a
+// ROS node's private parameter file without ROS (e.g. config/segmenter.yaml), and the conversion
+// of one YAML value that the node's own configuration reader shares.
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "stocs/util/param_set.h"
+
+namespace YAML {
+class Node;
+}
 
 namespace stocs {
 
@@ -15,6 +20,20 @@ struct ParamField {
   ParamInfo info;
   ParamRef field;
 };
+
+/// Throws InputError "file:line: key: problem", the line being `n`'s.
+[[noreturn]] void failAtYamlNode(const std::filesystem::path& file, const YAML::Node& n,
+                                 const std::string& key, const std::string& problem);
+
+/// `n`'s scalar as T (bool, int, float, double, uint64_t or std::string); throws InputError naming
+/// the file, the line and `key` for a list, a map or a value that is not a T.
+template <class T>
+T readYamlScalar(const std::filesystem::path& file, const YAML::Node& n, const std::string& key);
+
+/// Sets `field` from `n` (a scalar of its type, a list of strings, or one of `info`'s choices) and
+/// checks it against `info`'s range; throws InputError naming the file, the line and `key`.
+void assignParamNode(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
+                     const ParamInfo& info, const ParamRef& field);
 
 /// Sets each field whose key the file's top-level map holds. Throws InputError naming the file,
 /// the line and the key for an unreadable file, a key no field has, a value of the wrong type, an
