@@ -1,5 +1,5 @@
-// The package's own segmentation network (models/segmenter.onnx, scripts/train_segmenter.sh) on a
-// generated scene of a seed it was not trained on (training used seeds 1001-1004): it loads with
+// The package's own segmentation network (models/segmenter.onnx, scripts/train_segmenter.sh) on
+// generated scenes of a seed it was not trained on (training used seeds 1001-1006): it loads with
 // config/segmenter.yaml's settings (SegmentationNetworkParams' defaults) and segments every object
 // above a pixel precision and recall floor; `stocs estimate --prob onnx:` names a bad model.
 #include <fmt/format.h>
@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -22,11 +23,15 @@ namespace {
 const std::string kTool = STOCS_TOOL_PATH;
 const char* kModel = "models/segmenter.onnx";
 
-TEST(SegmenterModel, SegmentsEveryObjectOfAnUnseenGeneratedScene) {
+// Twelve views (four scenes of seed 7; the first is the one view this test once had): in one view
+// a good network misses a tenth of some object about once in ten views of this kind
+// (docs/simulator.md, "Why the unit test changed"), so each object's recall is pooled over the
+// views, with a higher floor than the one view had (0.9).
+TEST(SegmenterModel, SegmentsEveryObjectOfUnseenGeneratedScenes) {
   const auto data = test::scratchDir("segmenter_model") / "data";
   std::string out;
   ASSERT_EQ(test::runCommand(kTool + " synth --quiet --out " + data.string() +
-                                 " --objects 6 --distractors 2 --seed 7",
+                                 " --objects 6 --distractors 2 --seed 7 --scenes 4 --images 3",
                              out),
             0)
       << out;
@@ -34,22 +39,33 @@ TEST(SegmenterModel, SegmentsEveryObjectOfAnUnseenGeneratedScene) {
   params.model = kModel;
   const SegmentationNetwork network(params);
   const BopDataset dataset(data);
-  const cv::Mat bgr = cv::imread(dataset.rgbPath(0, 0).string(), cv::IMREAD_COLOR);
-  const std::vector<cv::Mat> maps = network.segment(bgr);
-  ASSERT_EQ(maps.size(), 7u);
-  const SegmentationScene frame = GroundTruthMasks(dataset).frame(0, 0);
+  const GroundTruthMasks masks(dataset);
+  std::map<int, PixelCounts> per_object;
+  int views = 0;
+  for (const int scene : dataset.sceneIds()) {
+    for (const auto& [image, camera] : dataset.sceneCameras(scene)) {
+      const cv::Mat bgr = cv::imread(dataset.rgbPath(scene, image).string(), cv::IMREAD_COLOR);
+      const std::vector<cv::Mat> maps = network.segment(bgr);
+      ASSERT_EQ(maps.size(), 7u);
+      const SegmentationScene frame = masks.frame(scene, image);
+      for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
+        const int obj = frame.obj_ids[i];
+        per_object[obj] +=
+            countSegmentPixels(maps[obj], frame.labels == static_cast<int>(i) + 1, 0.5f);
+      }
+      ++views;
+    }
+  }
+  ASSERT_EQ(views, 12);
+  ASSERT_EQ(per_object.size(), 6u);
   PixelCounts pooled;
-  for (size_t i = 0; i < frame.obj_ids.size(); ++i) {
-    const int obj = frame.obj_ids[i];
-    const cv::Mat mask = frame.labels == static_cast<int>(i) + 1;
-    const PixelCounts counts = countSegmentPixels(maps[obj], mask, 0.5f);
-    EXPECT_GT(counts.recall(), 0.9) << "object " << obj;
+  for (const auto& [obj, counts] : per_object) {
+    EXPECT_GT(counts.recall(), 0.95) << "object " << obj;
     pooled += counts;
   }
-  // Pooled: a distractor coloured almost like an object takes that object's label (object 1 here,
-  // 29% precise), as the simulator's look-alikes do; the others are above 94%.
+  // Pooled: a distractor coloured almost like an object takes that object's label in some views,
+  // as the simulator's look-alikes do.
   EXPECT_GT(pooled.precision(), 0.75);
-  EXPECT_GT(pooled.recall(), 0.95);
 }
 
 TEST(SegmenterModel, EstimateNamesAMissingOrCorruptModel) {
