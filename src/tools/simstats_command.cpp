@@ -1,12 +1,14 @@
 // `stocs simstats`: pixel precision and recall at a threshold of the segmentation simulator's
 // presets, of the dataset's own prob/ maps (real network maps in ../shared/datasets) and of ONNX
 // segmentation networks (--network, on rgb/), against the visible ground-truth masks, as one
-// markdown table (the preset calibration in docs/simulator.md).
+// markdown table (the preset calibration in docs/simulator.md); --recall-floor also counts the
+// single maps below a recall floor, as a one-image test would see them.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <map>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <set>
 
 #include "commands.h"
@@ -26,11 +28,13 @@ struct SimstatsOptions {
   int seeds = 3;
   float threshold = 0.5f;
   bool per_object = false;
+  std::optional<double> recall_floor;
 };
 
 struct Row {
   PixelCounts counts;
   int maps = 0;
+  int maps_at_or_below_floor = 0;
 };
 
 /// Rows in the order they were first counted, by what made the maps (and the object).
@@ -38,10 +42,12 @@ struct Rows {
   std::vector<std::string> order;
   std::map<std::string, Row> rows;
 
-  void add(const std::string& key, const PixelCounts& counts) {
+  void add(const std::string& key, const PixelCounts& counts, std::optional<double> floor) {
     if (rows.find(key) == rows.end()) order.push_back(key);
-    rows[key].counts += counts;
-    ++rows[key].maps;
+    Row& row = rows[key];
+    row.counts += counts;
+    ++row.maps;
+    if (floor && counts.recall() <= *floor) ++row.maps_at_or_below_floor;
   }
 };
 
@@ -76,9 +82,11 @@ cv::Mat objectMask(const SegmentationScene& frame, int obj) {
 }
 
 void printRow(const std::string& dataset, const std::string& masks, const std::string& source,
-              const Row& row) {
-  fmt::print("| {} | {} | {} | {} | {:.1f}% | {:.1f}% |\n", dataset, masks, source, row.maps,
+              const Row& row, bool with_floor) {
+  fmt::print("| {} | {} | {} | {} | {:.1f}% | {:.1f}% |", dataset, masks, source, row.maps,
              100 * row.counts.precision(), 100 * row.counts.recall());
+  if (with_floor) fmt::print(" {} |", row.maps_at_or_below_floor);
+  fmt::print("\n");
 }
 
 void measureDataset(const std::string& root, const SimstatsOptions& o) {
@@ -98,25 +106,29 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
         const cv::Mat target = objectMask(frame, obj);
         const std::string suffix = o.per_object ? fmt::format(", obj {}", obj) : "";
         if (std::filesystem::exists(dataset.probabilityPath(scene, im, obj))) {
-          rows.add(
-              "dataset's prob/ maps" + suffix,
-              countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold));
+          rows.add("dataset's prob/ maps" + suffix,
+                   countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold),
+                   o.recall_floor);
         }
         for (const LabelledSource& s : sources) {
           rows.add(s.label + suffix,
-                   countSegmentPixels(s.source->load(scene, im, obj), target, o.threshold));
+                   countSegmentPixels(s.source->load(scene, im, obj), target, o.threshold),
+                   o.recall_floor);
         }
       }
     }
   }
   const std::string kinds = fmt::format("{}", fmt::join(mask_kinds, ", "));
-  for (const std::string& key : rows.order) printRow(name, kinds, key, rows.rows.at(key));
+  for (const std::string& key : rows.order) {
+    printRow(name, kinds, key, rows.rows.at(key), o.recall_floor.has_value());
+  }
 }
 
 int runSimstats(const SimstatsOptions& o) {
   for (const std::string& preset : o.presets) segmentationPreset(preset);  // names checked first
-  fmt::print("| dataset | masks | maps from | maps | precision | recall |\n");
-  fmt::print("|---|---|---|---|---|---|\n");
+  fmt::print("| dataset | masks | maps from | maps | precision | recall |");
+  if (o.recall_floor) fmt::print(" maps with recall <= {} |", *o.recall_floor);
+  fmt::print("\n|---|---|---|---|---|---|{}\n", o.recall_floor ? "---|" : "");
   for (const std::string& root : o.datasets) measureDataset(root, o);
   return 0;
 }
@@ -138,6 +150,10 @@ Command registerSimstats(CLI::App& app) {
   cmd->add_option("--seeds", o->seeds, "Simulated maps per object: seeds 1..N")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--threshold", o->threshold, "Probability above which a pixel is in the segment")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--recall-floor", o->recall_floor,
+                  "Also count the maps (an object in one image) whose own recall is at or below "
+                  "this")
       ->check(CLI::Range(0.0, 1.0));
   return {cmd, [o] { return runSimstats(*o); }};
 }

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/geometry/surface_sampling.h"
@@ -127,13 +130,24 @@ TEST(CliSynth, HelpListsTheProbabilitySourcesAndBadRequestsExitNonZero) {
   EXPECT_NE(out.find("not a folder"), std::string::npos) << out;
 }
 
+/// The numbers in the columns of the simstats row for `source` after its name (maps, precision,
+/// recall and, with --recall-floor, the maps at or below it); empty when there is no such row.
+std::vector<double> simstatsColumns(const std::string& table, const std::string& source) {
+  const size_t row = table.find("| " + source + " |");
+  if (row == std::string::npos) return {};
+  const size_t start = row + source.size() + 4;
+  std::stringstream line(table.substr(start, table.find('\n', row) - start));
+  std::vector<double> columns;
+  for (std::string cell; std::getline(line, cell, '|');) {
+    if (cell.find_first_of("0123456789") != std::string::npos) columns.push_back(std::stod(cell));
+  }
+  return columns;
+}
+
 /// The recall column of the simstats row for `source`, percent; -1 when there is no such row.
 double simstatsRecall(const std::string& table, const std::string& source) {
-  const size_t row = table.find("| " + source + " |");
-  if (row == std::string::npos) return -1;
-  const std::string line = table.substr(row, table.find('\n', row) - row);
-  const size_t last = line.rfind('|', line.size() - 2);
-  return std::stod(line.substr(last + 1));
+  const std::vector<double> columns = simstatsColumns(table, source);
+  return columns.size() >= 3 ? columns[2] : -1;
 }
 
 TEST(CliSynth, SimstatsRanksThePresetsOnAGeneratedDataset) {
@@ -159,6 +173,34 @@ TEST(CliSynth, SimstatsRanksThePresetsOnAGeneratedDataset) {
   EXPECT_NE(out.find("unknown segmentation preset 'grainy'"), std::string::npos) << out;
   EXPECT_EQ(test::runCommand(kTool + " simstats --dataset " + (root / "none").string(), out), 2);
   EXPECT_NE(out.find("not a folder"), std::string::npos) << out;
+}
+
+TEST(CliSynth, SimstatsCountsTheMapsAtOrBelowARecallFloor) {
+  const auto root = test::scratchDir("simstats_floor");
+  const std::string data = (root / "d").string();
+  std::string out;
+  ASSERT_EQ(
+      test::runCommand(kTool + " synth --out " + data + " --objects 3 --images 4 --quiet", out), 0)
+      << out;
+  const std::string simstats =
+      kTool + " simstats --dataset " + data + " --presets clean,very-noisy --seeds 1";
+  ASSERT_EQ(test::runCommand(simstats + " --recall-floor 1", out), 0) << out;
+  EXPECT_NE(out.find("| maps with recall <= 1 |"), std::string::npos) << out;
+  for (const char* source : {"simulator, clean", "simulator, very-noisy"}) {
+    const std::vector<double> columns = simstatsColumns(out, source);
+    ASSERT_EQ(columns.size(), 4u) << source << " in:\n" << out;
+    EXPECT_EQ(columns[3], columns[0]) << "every map's recall is at most 1:\n" << out;
+  }
+  ASSERT_EQ(test::runCommand(simstats + " --recall-floor 0.9", out), 0) << out;
+  const std::vector<double> clean = simstatsColumns(out, "simulator, clean");
+  const std::vector<double> noisy = simstatsColumns(out, "simulator, very-noisy");
+  ASSERT_EQ(clean.size(), 4u) << out;
+  ASSERT_EQ(noisy.size(), 4u) << out;
+  EXPECT_LT(clean[3], noisy[3]) << out;
+  EXPECT_EQ(simstatsColumns(out, "dataset's prob/ maps").size(), 4u) << out;
+
+  EXPECT_NE(test::runCommand(simstats + " --recall-floor 1.5", out), 0);
+  EXPECT_NE(out.find("--recall-floor"), std::string::npos) << out;
 }
 
 TEST(CliSynth, MeshesWritesTheCatalogue) {

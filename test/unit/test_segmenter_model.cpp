@@ -23,10 +23,10 @@ namespace {
 const std::string kTool = STOCS_TOOL_PATH;
 const char* kModel = "models/segmenter.onnx";
 
-// Twelve views (four scenes of seed 7; the first is the one view this test once had): in one view
-// a good network misses a tenth of some object about once in ten views of this kind
-// (docs/simulator.md, "Why the unit test changed"), so each object's recall is pooled over the
-// views, with a higher floor than the one view had (0.9).
+// Twelve views (four scenes of seed 7; the first is the one view this test once had): a good
+// network misses a tenth of some object in about one view in six of this kind (docs/simulator.md,
+// "Why the unit test changed"), so each object's recall is pooled over the views, with a higher
+// floor than the one view had (0.9).
 TEST(SegmenterModel, SegmentsEveryObjectOfUnseenGeneratedScenes) {
   const auto data = test::scratchDir("segmenter_model") / "data";
   std::string out;
