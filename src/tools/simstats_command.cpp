@@ -39,15 +39,16 @@ struct Row {
 
 /// Rows in the order they were first counted, by what made the maps (and the object).
 struct Rows {
+  std::optional<double> recall_floor;
   std::vector<std::string> order;
   std::map<std::string, Row> rows;
 
-  void add(const std::string& key, const PixelCounts& counts, std::optional<double> floor) {
+  void add(const std::string& key, const PixelCounts& counts) {
     if (rows.find(key) == rows.end()) order.push_back(key);
     Row& row = rows[key];
     row.counts += counts;
     ++row.maps;
-    if (floor && counts.recall() <= *floor) ++row.maps_at_or_below_floor;
+    if (recall_floor && counts.recall() <= *recall_floor) ++row.maps_at_or_below_floor;
   }
 };
 
@@ -93,7 +94,7 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
   const BopDataset dataset(root);
   const GroundTruthMasks masks(dataset);
   const std::string name = std::filesystem::path(root).filename().string();
-  Rows rows;
+  Rows rows{o.recall_floor, {}, {}};
   std::set<std::string> mask_kinds;
   const std::vector<LabelledSource> sources = mapSources(dataset, o);
   for (int scene : dataset.sceneIds()) {
@@ -106,14 +107,13 @@ void measureDataset(const std::string& root, const SimstatsOptions& o) {
         const cv::Mat target = objectMask(frame, obj);
         const std::string suffix = o.per_object ? fmt::format(", obj {}", obj) : "";
         if (std::filesystem::exists(dataset.probabilityPath(scene, im, obj))) {
-          rows.add("dataset's prob/ maps" + suffix,
-                   countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold),
-                   o.recall_floor);
+          rows.add(
+              "dataset's prob/ maps" + suffix,
+              countSegmentPixels(dataset.loadProbability(scene, im, obj), target, o.threshold));
         }
         for (const LabelledSource& s : sources) {
           rows.add(s.label + suffix,
-                   countSegmentPixels(s.source->load(scene, im, obj), target, o.threshold),
-                   o.recall_floor);
+                   countSegmentPixels(s.source->load(scene, im, obj), target, o.threshold));
         }
       }
     }
