@@ -337,14 +337,7 @@ std::string NodeConfig::objectNames() const {
 }
 
 NodeConfig loadNodeConfig(const fs::path& file, const fs::path& dataset) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::BadFile&) {
-    throw InputError(fmt::format("{}: cannot open the configuration file", file.string()));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: invalid YAML: {}", file.string(), e.what()));
-  }
+  const YAML::Node root = stocs::loadYamlFile(file, "cannot open the configuration file");
   NodeConfig c;
   c.file = fs::absolute(file);
   const PathContext paths{c.file.parent_path(), dataset};

@@ -52,19 +52,22 @@ void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std:
 }
 
 YAML::Node loadMap(const std::filesystem::path& file) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::BadFile&) {
-    throw InputError(fmt::format("{}: cannot read the file", file.string()));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: invalid YAML: {}", file.string(), e.what()));
-  }
+  const YAML::Node root = loadYamlFile(file, "cannot read the file");
   if (!root.IsMap()) throw InputError(fmt::format("{}: expected a map of keys", file.string()));
   return root;
 }
 
 }  // namespace
+
+YAML::Node loadYamlFile(const std::filesystem::path& file, const char* unreadable) {
+  try {
+    return YAML::LoadFile(file.string());
+  } catch (const YAML::BadFile&) {
+    throw InputError(fmt::format("{}: {}", file.string(), unreadable));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: invalid YAML: {}", file.string(), e.what()));
+  }
+}
 
 void failAtYamlNode(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
                     const std::string& problem) {

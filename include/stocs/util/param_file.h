@@ -21,6 +21,10 @@ struct ParamField {
   ParamRef field;
 };
 
+/// The YAML document in `file`; throws InputError "file: `unreadable`" when it cannot be read and
+/// "file: invalid YAML: ..." when it does not parse.
+YAML::Node loadYamlFile(const std::filesystem::path& file, const char* unreadable);
+
 /// Throws InputError "file:line: key: problem", the line being `n`'s.
 [[noreturn]] void failAtYamlNode(const std::filesystem::path& file, const YAML::Node& n,
                                  const std::string& key, const std::string& problem);
