@@ -195,6 +195,7 @@ TEST(SegmentationNetwork, SettingsFileMistakesNamed) {
            {good + "input_width: 0\n", "net.yaml:3: input_width: 0 px is outside [8, 8192]"},
            {good + "input_width: wide\n",
             "net.yaml:3: input_width: expected an integer, got 'wide'"},
+           {good + "scale: 1e39\n", "net.yaml:3: scale: expected a number, got '1e39'"},
            {good + "resize: crop\n", "net.yaml:3: resize: 'crop' is not one of stretch, letterbox"},
            {good + "channels: cat\n", "net.yaml:3: channels: expected a list"},
            {good + "channels: ['-', '1']\n",
