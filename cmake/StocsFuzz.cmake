@@ -49,8 +49,8 @@ target_link_options(stocs_mesh_reader PRIVATE -fsanitize=${STOCS_FUZZ_SANITIZERS
 set(STOCS_FUZZ_LINKED_MODULES stocs_io stocs_model)
 # The ROS message conversion, compiled once for both ROS fuzz targets.
 if(STOCS_FUZZ_ROS_FOUND)
-  add_library(stocs_fuzz_ros_conversion OBJECT ${PROJECT_SOURCE_DIR}/src/ros/cloud_conversion.cpp
-              ${PROJECT_SOURCE_DIR}/src/ros/image_conversion.cpp)
+  add_library(stocs_fuzz_ros_conversion OBJECT ${PROJECT_SOURCE_DIR}/src/ros/common/cloud_conversion.cpp
+              ${PROJECT_SOURCE_DIR}/src/ros/common/image_conversion.cpp)
   target_compile_options(stocs_fuzz_ros_conversion PRIVATE ${STOCS_FUZZ_COMPILE_FLAGS})
   target_include_directories(stocs_fuzz_ros_conversion SYSTEM PRIVATE
                              ${STOCS_FUZZ_SENSOR_MSGS_INCLUDE} ${STOCS_FUZZ_CV_BRIDGE_INCLUDE})

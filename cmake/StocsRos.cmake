@@ -3,8 +3,8 @@
 # Included before the core targets because catkin_package() must precede every target.
 # The ROS packages the wrappers build against and export; sorted, as catkin_lint asks.
 set(STOCS_ROS_CATKIN_DEPENDS
-  cv_bridge diagnostic_msgs geometry_msgs image_transport nodelet pluginlib roscpp roslib
-  sensor_msgs std_msgs std_srvs tf2 tf2_eigen tf2_ros visualization_msgs)
+  cv_bridge diagnostic_msgs dynamic_reconfigure geometry_msgs image_transport nodelet pluginlib
+  roscpp roslib sensor_msgs std_msgs std_srvs tf2 tf2_eigen tf2_ros visualization_msgs)
 set(STOCS_ROS_BUILD_COMPONENTS ${STOCS_ROS_CATKIN_DEPENDS} message_generation)
 set(STOCS_ROS_EXPORTED_DEPENDS ${STOCS_ROS_CATKIN_DEPENDS} message_runtime)
 list(SORT STOCS_ROS_BUILD_COMPONENTS)
@@ -23,10 +23,18 @@ catkin_package(
   CATKIN_DEPENDS ${STOCS_ROS_EXPORTED_DEPENDS}
 )
 
-# The wrappers: every src/ros file except the executables' mains and the nodelet shells.
-file(GLOB STOCS_ROS_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*.cpp)
-list(FILTER STOCS_ROS_SOURCES EXCLUDE REGEX "(_main|nodelets)\\.cpp$")
-add_library(stocs_ros ${STOCS_ROS_SOURCES})
+# The wrappers, a folder per program under src/ros/ (include/stocs_ros/ for their headers):
+# common/ is what the programs share (conversions, the node's configuration, markers, the
+# synchronizer), the library stocs_ros; each program folder is a static library of its own beside
+# its executable's main (<folder>_main.cpp) and nodelet shell (*_nodelet.cpp).
+function(stocs_ros_sources out folder)
+  file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/${folder}/*.cpp)
+  list(FILTER sources EXCLUDE REGEX "(_main|_nodelet)\\.cpp$")
+  set(${out} ${sources} PARENT_SCOPE)
+endfunction()
+
+stocs_ros_sources(STOCS_ROS_COMMON_SOURCES common)
+add_library(stocs_ros ${STOCS_ROS_COMMON_SOURCES})
 # The generated message headers (devel/include) reach every target through generate_messages().
 target_include_directories(stocs_ros PUBLIC ${PROJECT_SOURCE_DIR}/include)
 # PUBLIC: the node, nodelet and tests include ROS headers through the wrappers' headers. The package
@@ -37,18 +45,28 @@ target_link_libraries(stocs_ros PUBLIC stocs_core ${catkin_LIBRARIES}
   PRIVATE yaml-cpp opencv_imgcodecs)
 add_dependencies(stocs_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
 
-add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node_main.cpp)
-target_link_libraries(stocs_node PRIVATE stocs_ros)
-add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher_main.cpp)
-target_link_libraries(scene_publisher PRIVATE stocs_ros)
-add_executable(segmentation_node ${PROJECT_SOURCE_DIR}/src/ros/segmentation_node_main.cpp)
-target_link_libraries(segmentation_node PRIVATE stocs_ros)
-add_executable(config_reference ${PROJECT_SOURCE_DIR}/src/ros/config_reference_main.cpp)
-target_link_libraries(config_reference PRIVATE stocs_ros)
-add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder_main.cpp)
-target_link_libraries(demo_recorder PRIVATE stocs_ros)
-add_library(stocs_ros_nodelet ${PROJECT_SOURCE_DIR}/src/ros/nodelets.cpp)
-target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros)
+# stocs_ros_program(FOLDER EXECUTABLE): the static library stocs_ros_FOLDER of src/ros/FOLDER and
+# the executable of its main.
+function(stocs_ros_program folder executable)
+  stocs_ros_sources(sources ${folder})
+  add_library(stocs_ros_${folder} STATIC ${sources})
+  set_target_properties(stocs_ros_${folder} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_link_libraries(stocs_ros_${folder} PUBLIC stocs_ros ${ARGN})
+  add_executable(${executable} ${PROJECT_SOURCE_DIR}/src/ros/${folder}/${executable}_main.cpp)
+  target_link_libraries(${executable} PRIVATE stocs_ros_${folder})
+endfunction()
+stocs_ros_program(stocs_node stocs_node)
+stocs_ros_program(scene_publisher scene_publisher)
+stocs_ros_program(segmentation_node segmentation_node)
+stocs_ros_program(demo_recorder demo_recorder)
+stocs_ros_program(config_reference config_reference stocs_ros_segmentation_node
+  stocs_ros_scene_publisher stocs_ros_demo_recorder)
+
+# One plugin library holds the three nodelets (nodelet_plugins.xml).
+file(GLOB STOCS_ROS_NODELET_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*/*_nodelet.cpp)
+add_library(stocs_ros_nodelet ${STOCS_ROS_NODELET_SOURCES})
+target_link_libraries(stocs_ros_nodelet PRIVATE stocs_ros_stocs_node stocs_ros_scene_publisher
+  stocs_ros_segmentation_node)
 
 install(TARGETS stocs_ros stocs_ros_nodelet
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}

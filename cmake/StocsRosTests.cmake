@@ -5,12 +5,15 @@
 find_package(rostest REQUIRED)
 find_package(roslaunch REQUIRED)
 roslaunch_add_file_check(launch)
+# The wrappers the tests reach into: the shared library and every program's.
+set(STOCS_ROS_TESTED_LIBRARIES stocs_ros_stocs_node stocs_ros_scene_publisher
+  stocs_ros_segmentation_node stocs_ros_config_reference stocs_ros_demo_recorder)
 
 file(GLOB STOCS_ROS_UNIT_TESTS CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/test/ros/unit/test_*.cpp)
 foreach(src ${STOCS_ROS_UNIT_TESTS})
   get_filename_component(name ${src} NAME_WE)
   stocs_add_gtest(ros_${name} ${src})
-  target_link_libraries(ros_${name} stocs_ros)
+  target_link_libraries(ros_${name} ${STOCS_ROS_TESTED_LIBRARIES})
 endforeach()
 
 # The generated dataset and configs the integration tests play, written when the tests are built.
@@ -55,7 +58,7 @@ function(stocs_add_rostest_node name)
     ${PROJECT_SOURCE_DIR}/test/test_support.cpp EXCLUDE_FROM_ALL)
   add_dependencies(tests ${name})
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/test ${PROJECT_SOURCE_DIR}/test/ros)
-  target_link_libraries(${name} stocs_ros)
+  target_link_libraries(${name} ${STOCS_ROS_TESTED_LIBRARIES})
   target_compile_definitions(${name} PRIVATE
     STOCS_DATASETS_DEFAULT="" STOCS_TEST_BINARY_DIR="${CMAKE_CURRENT_BINARY_DIR}"
     STOCS_NODE_PATH="$<TARGET_FILE:stocs_node>" SCENE_PUBLISHER_PATH="$<TARGET_FILE:scene_publisher>"
@@ -71,10 +74,13 @@ stocs_add_rostest_node(test_rejected_objects ${PROJECT_SOURCE_DIR}/test/ros/test
 stocs_add_rostest_node(test_sequence_playback ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_playback.cpp)
 stocs_add_rostest_node(test_segmentation_node ${PROJECT_SOURCE_DIR}/test/ros/test_segmentation_node.cpp)
 stocs_add_rostest_node(test_sequence_tracking ${PROJECT_SOURCE_DIR}/test/ros/test_sequence_tracking.cpp)
+stocs_add_rostest_node(test_robot_frame ${PROJECT_SOURCE_DIR}/test/ros/test_robot_frame.cpp)
 
 set(STOCS_ROS_TEST_DEPENDS stocs_node scene_publisher stocs_ros_nodelet stocs_ros_test_data)
 add_rostest(test/ros/synthetic_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/robot_frame.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_robot_frame ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/nodelet_multichannel.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/synth_scene_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}

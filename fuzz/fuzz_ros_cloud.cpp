@@ -3,7 +3,7 @@
 // must return a cloud of width x height points or throw InputError.
 #include "fuzz_support.h"
 #include "ros_message_layout.h"
-#include "stocs_ros/cloud_conversion.h"
+#include "stocs_ros/common/cloud_conversion.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   stocs::fuzz::ByteReader in(data, size);

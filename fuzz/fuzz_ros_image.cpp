@@ -3,8 +3,8 @@
 // ros_message_layout.h); each conversion must return or throw InputError.
 #include "fuzz_support.h"
 #include "ros_message_layout.h"
-#include "stocs_ros/cloud_conversion.h"
-#include "stocs_ros/image_conversion.h"
+#include "stocs_ros/common/cloud_conversion.h"
+#include "stocs_ros/common/image_conversion.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using stocs::fuzz::tolerateInputError;

@@ -18,7 +18,8 @@ void addParamOption(CLI::App& cmd, const ParamInfo& info, const ParamRef& field)
       [&](auto f) -> CLI::Option* {
         using Field = decltype(f);
         if constexpr (std::is_same_v<Field, ChoiceRef> ||
-                      std::is_same_v<Field, std::vector<std::string>*>) {
+                      std::is_same_v<Field, std::vector<std::string>*> ||
+                      std::is_same_v<Field, std::vector<int>*>) {
           return nullptr;  // the core has no choice or list parameters
         } else {
           return cmd.add_option(info.cliFlag(), *f, help);

@@ -56,6 +56,12 @@ FrameTracker::FrameTracker(const TrackingParams& params) : params_(params) {
   params_.validate();
 }
 
+void FrameTracker::setParams(const TrackingParams& params) {
+  params.validate();
+  params_ = params;
+  for (auto& [name, tracker] : objects_) tracker.setParams(params);
+}
+
 void FrameTracker::reset() {
   objects_.clear();
   last_stamp_.reset();

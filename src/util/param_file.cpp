@@ -32,12 +32,13 @@ void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std:
   *target = readYamlScalar<T>(file, n, key);
 }
 
+template <class T>
 void assignTo(const std::filesystem::path& file, const YAML::Node& n, const std::string& key,
-              const ParamInfo&, std::vector<std::string>* target) {
+              const ParamInfo&, std::vector<T>* target) {
   if (!n.IsSequence()) failAtYamlNode(file, n, key, "expected a list");
   target->clear();
   for (size_t k = 0; k < n.size(); ++k) {
-    target->push_back(readYamlScalar<std::string>(file, n[k], fmt::format("{}[{}]", key, k)));
+    target->push_back(readYamlScalar<T>(file, n[k], fmt::format("{}[{}]", key, k)));
   }
 }
 

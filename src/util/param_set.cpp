@@ -39,7 +39,7 @@ std::optional<double> numeric(const ParamRef& value) {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, bool*> || std::is_same_v<T, std::string*> ||
                       std::is_same_v<T, std::vector<std::string>*> ||
-                      std::is_same_v<T, ChoiceRef>) {
+                      std::is_same_v<T, std::vector<int>*> || std::is_same_v<T, ChoiceRef>) {
           return std::nullopt;
         } else {
           return static_cast<double>(*v);
@@ -56,7 +56,8 @@ std::string paramText(const ParamRef& value) {
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_same_v<T, ChoiceRef>) {
           return v.get();
-        } else if constexpr (std::is_same_v<T, std::vector<std::string>*>) {
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>*> ||
+                             std::is_same_v<T, std::vector<int>*>) {
           return fmt::format("[{}]", fmt::join(*v, ", "));
         } else {
           return fmt::format("{}", *v);

@@ -77,6 +77,10 @@ int main(int argc, char** argv) {
   std::ofstream(out / "synthetic_multichannel.yaml")
       << kObject << "input:\n  source: depth\n  probability: multichannel\n"
       << "  channels: [\"-\", box]\n  boundary: true\n";
+  // Poses in the robot's frame (robot_frame.test), and in a frame TF does not know.
+  std::ofstream(out / "synthetic_base_link.yaml") << kObject << "output:\n  frame: base_link\n";
+  std::ofstream(out / "synthetic_nowhere.yaml")
+      << kObject << "output:\n  frame: nowhere\n  transform_timeout: 0.05\n";
   writeAbsentObjects(out / "absent");
   std::ofstream(out / "absent.yaml") << kAbsentObjects;
   const std::string demo = stocs::readTextFile(argv[2]);

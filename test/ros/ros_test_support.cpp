@@ -6,8 +6,8 @@
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/mesh_io.h"
-#include "stocs_ros/cloud_conversion.h"
-#include "stocs_ros/stamp_synchronizer.h"
+#include "stocs_ros/common/cloud_conversion.h"
+#include "stocs_ros/common/stamp_synchronizer.h"
 
 namespace stocs_ros::test {
 

@@ -22,7 +22,7 @@
 
 #include "ros_test_support.h"
 #include "stocs/io/bop_dataset.h"
-#include "stocs_ros/result_messages.h"
+#include "stocs_ros/stocs_node/result_messages.h"
 #include "test_support.h"
 
 namespace stocs_ros::test {

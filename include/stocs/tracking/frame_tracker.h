@@ -75,6 +75,9 @@ class FrameTracker {
   void reset();
 
   const TrackingParams& params() const { return params_; }
+  /// New parameters from the next frame on, every track kept (a node's runtime settings). Throws
+  /// InputError naming the first parameter out of range, keeping the old ones.
+  void setParams(const TrackingParams& params);
   /// Each object's tracker, by name.
   const std::map<std::string, ObjectTracker>& objects() const { return objects_; }
 

@@ -62,6 +62,8 @@ class ObjectTracker {
   ~ObjectTracker();
   ObjectTracker(ObjectTracker&&) noexcept;
   ObjectTracker& operator=(ObjectTracker&&) noexcept;
+  /// New parameters from the next frame on, the tracks kept; `params` must be valid.
+  void setParams(const TrackingParams& params) { params_ = params; }
 
   /// The object in a new frame `dt` seconds after the previous one: follow(), then conclude(). The
   /// scheduled full detection runs only where `may_redetect` allows it (else on a later frame).

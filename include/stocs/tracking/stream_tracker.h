@@ -44,6 +44,8 @@ class StreamTracker {
   std::optional<std::string> takeDetectionError();
 
   const FrameTracker& frames() const { return tracker_; }
+  /// New parameters from the next frame on, every track kept (FrameTracker::setParams).
+  void setParams(const TrackingParams& params) { tracker_.setParams(params); }
 
  private:
   struct Job {

@@ -56,7 +56,7 @@ struct ChoiceRef {
 
 /// One field of a parameter struct, as the schema reaches it.
 using ParamRef = std::variant<bool*, int*, float*, double*, uint64_t*, std::string*,
-                              std::vector<std::string>*, ChoiceRef>;
+                              std::vector<std::string>*, std::vector<int>*, ChoiceRef>;
 
 /// What a schema says of one parameter.
 struct ParamInfo {

@@ -7,7 +7,7 @@
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/sim/probability_source.h"
-#include "stocs_ros/bop_frame.h"
+#include "stocs_ros/scene_publisher/bop_frame.h"
 #include "test_support.h"
 
 namespace stocs_ros {

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
-#include "stocs_ros/cloud_conversion.h"
+#include "stocs_ros/common/cloud_conversion.h"
 
 namespace stocs_ros {
 namespace {

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "stocs_ros/config_reference.h"
+#include "stocs_ros/config_reference/config_reference.h"
 
 namespace stocs_ros {
 namespace {

@@ -11,10 +11,10 @@
 
 #include <opencv2/imgproc.hpp>
 #include "stocs/util/error.h"
-#include "stocs_ros/bop_frame.h"
-#include "stocs_ros/cloud_conversion.h"
-#include "stocs_ros/frame_estimation.h"
-#include "stocs_ros/result_messages.h"
+#include "stocs_ros/common/cloud_conversion.h"
+#include "stocs_ros/scene_publisher/bop_frame.h"
+#include "stocs_ros/stocs_node/frame_estimation.h"
+#include "stocs_ros/stocs_node/result_messages.h"
 #include "test_support.h"
 
 namespace stocs_ros {
@@ -69,7 +69,7 @@ class FrameEstimation : public ::testing::Test {
 
   static std::string errorOf(const EstimationJob& job, const EstimationSetup& s) {
     try {
-      estimateFrame(job, s);
+      detectJob(job, s);
     } catch (const stocs::InputError& e) {
       return e.what();
     }
@@ -111,7 +111,7 @@ TEST_F(FrameEstimation, LoadedFrameHoldsTheDatasetImages) {
 
 TEST_F(FrameEstimation, CloudAndPerObjectImageGiveTheKnownPose) {
   const auto s = setup("");
-  const FrameResult result = estimateFrame(cloudJob(), *s);
+  const FrameResult result = detectJob(cloudJob(), *s);
   EXPECT_EQ(result.header.stamp, ros::Time(3.0));
   EXPECT_EQ(result.header.frame_id, "camera");
   expectFoundNearTruth(result);
@@ -136,7 +136,7 @@ TEST_F(FrameEstimation, DepthImageAndMultichannelImageGiveTheKnownPose) {
   job.frame.multichannel = image("8UC2", merged);
   job.frame.boundary = image("mono8", cv::Mat(frame_->depth.size(), CV_8UC1, cv::Scalar(255)));
   job.objects = {0};
-  expectFoundNearTruth(estimateFrame(job, *s));
+  expectFoundNearTruth(detectJob(job, *s));
 }
 
 /// The box's mask in the generated frame (its map above one half).
@@ -152,8 +152,8 @@ TEST_F(FrameEstimation, LabelsMasksAndBoxesGiveTheKnownPose) {
   cv::Mat labels(mask.size(), CV_8UC1, cv::Scalar(0));
   labels.setTo(3, mask);
   job.frame.segmentation.labels = image("mono8", labels);
-  expectFoundNearTruth(estimateFrame(
-      job, *setup("input: {probability: labels, labels: [\"-\", \"-\", \"-\", box]}\n")));
+  expectFoundNearTruth(
+      detectJob(job, *setup("input: {probability: labels, labels: [\"-\", \"-\", \"-\", box]}\n")));
 
   // Masks: class 1 (the box's id), and a mask of another class over the rest of the image.
   auto masks = boost::make_shared<InstanceMaskArray>();
@@ -166,7 +166,7 @@ TEST_F(FrameEstimation, LabelsMasksAndBoxesGiveTheKnownPose) {
   masks->masks[1].score = 1.0f;
   job.frame.segmentation = {};
   job.frame.segmentation.masks = masks;
-  expectFoundNearTruth(estimateFrame(job, *setup("input: {probability: masks}\n")));
+  expectFoundNearTruth(detectJob(job, *setup("input: {probability: masks}\n")));
 
   // Boxes: the mask's bounding box, loosened by 10 pixels.
   const cv::Rect r = cv::boundingRect(mask);
@@ -181,7 +181,7 @@ TEST_F(FrameEstimation, LabelsMasksAndBoxesGiveTheKnownPose) {
   d.height = r.height + 20;
   job.frame.segmentation = {};
   job.frame.segmentation.boxes = boxes;
-  expectFoundNearTruth(estimateFrame(job, *setup("input: {probability: boxes}\n")));
+  expectFoundNearTruth(detectJob(job, *setup("input: {probability: boxes}\n")));
 }
 
 TEST_F(FrameEstimation, BadSegmentationMessagesAreNamed) {
@@ -227,7 +227,7 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   ASSERT_TRUE(s->config.tracking.enabled);  // the node's default
   stocs::StreamTracker tracker(s->config.tracking);
   // The first frame is detected in place.
-  const FrameResult first = trackFrame(cloudJob(3.0), s, tracker);
+  const FrameResult first = trackJob(cloudJob(3.0), s, tracker);
   expectFoundNearTruth(first);
   EXPECT_EQ(first.objects[0].states,
             std::vector<stocs::TrackState>{stocs::TrackState::kRedetected});
@@ -236,17 +236,17 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   EXPECT_EQ(toObjectPoseArray(first, *s).objects.at(0).state, ObjectPose::REDETECTED);
 
   // The next is followed, and starts the detection that confirms the new track.
-  const FrameResult next = trackFrame(cloudJob(3.0 + 1.0 / 30), s, tracker);
+  const FrameResult next = trackJob(cloudJob(3.0 + 1.0 / 30), s, tracker);
   expectFoundNearTruth(next);
   EXPECT_EQ(next.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kTracked});
   EXPECT_EQ(toObjectPoseArray(next, *s).objects.at(0).state, ObjectPose::TRACKED);
   tracker.waitForDetection();
-  expectFoundNearTruth(trackFrame(cloudJob(3.0 + 2.0 / 30), s, tracker));  // merges it
+  expectFoundNearTruth(trackJob(cloudJob(3.0 + 2.0 / 30), s, tracker));  // merges it
 
   // The map vanishes: the box is lost, listed as rejected and lost, with no pose published.
   EstimationJob gone = cloudJob(3.0 + 3.0 / 30);
   gone.frame.probabilities[0] = image("32FC1", cv::Mat(240, 320, CV_32FC1, cv::Scalar(0)));
-  const FrameResult lost = trackFrame(gone, s, tracker);
+  const FrameResult lost = trackJob(gone, s, tracker);
   EXPECT_EQ(lost.objects[0].states, std::vector<stocs::TrackState>{stocs::TrackState::kLost});
   const ObjectPoseArray lost_msg = toObjectPoseArray(lost, *s);
   EXPECT_TRUE(lost_msg.objects.empty());
@@ -255,7 +255,7 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
   EXPECT_EQ(lost_msg.rejected[0].reason.rfind("lost: ", 0), 0u) << lost_msg.rejected[0].reason;
 
   // Detection without tracking says so.
-  EXPECT_EQ(toObjectPoseArray(estimateFrame(cloudJob(), *s), *s).objects.at(0).state,
+  EXPECT_EQ(toObjectPoseArray(detectJob(cloudJob(), *s), *s).objects.at(0).state,
             ObjectPose::DETECTED);
 }
 

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "stocs/io/mesh_io.h"
-#include "stocs_ros/ground_truth_markers.h"
+#include "stocs_ros/scene_publisher/ground_truth_markers.h"
 
 namespace stocs_ros {
 namespace {

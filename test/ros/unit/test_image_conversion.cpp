@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
-#include "stocs_ros/image_conversion.h"
+#include "stocs_ros/common/image_conversion.h"
 
 namespace stocs_ros {
 namespace {

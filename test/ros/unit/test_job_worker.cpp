@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "stocs_ros/job_worker.h"
+#include "stocs_ros/stocs_node/job_worker.h"
 
 namespace stocs_ros {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "stocs/util/error.h"
 #include "stocs/util/param_docs.h"
-#include "stocs_ros/node_config.h"
+#include "stocs_ros/common/node_config.h"
 #include "test_support.h"
 
 namespace stocs_ros {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "stocs/util/error.h"
-#include "stocs_ros/node_statistics.h"
+#include "stocs_ros/stocs_node/node_statistics.h"
 
 namespace stocs_ros {
 namespace {

@@ -2,7 +2,7 @@
 // the frame's origin sees them; others stay where they are.
 #include <gtest/gtest.h>
 
-#include "stocs_ros/object_markers.h"
+#include "stocs_ros/common/object_markers.h"
 
 namespace stocs_ros {
 namespace {

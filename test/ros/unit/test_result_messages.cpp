@@ -8,8 +8,8 @@
 #include <cmath>
 #include <tuple>
 
-#include "stocs_ros/pose_uncertainty.h"
-#include "stocs_ros/result_messages.h"
+#include "stocs_ros/stocs_node/pose_uncertainty.h"
+#include "stocs_ros/stocs_node/result_messages.h"
 
 namespace stocs_ros {
 namespace {
@@ -24,7 +24,7 @@ EstimationSetup twoObjects() {
     stocs::PreparedModel m;
     for (int i = 0; i < 5000; ++i) m.model.points.emplace_back(0.001f * i, 0, 0);
     m.model.diameter = 5;
-    setup.models.push_back(m);
+    setup.models.push_back(std::make_shared<const stocs::PreparedModel>(std::move(m)));
   }
   setup.config.objects[1].mesh_url = "package://stocs_ros/meshes/can.stl";
   setup.config.objects[1].mesh_scale = 0.001f;
@@ -109,13 +109,15 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
 TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
   // Two 10 cm cubes side by side, tilted, left and right of the optical axis, above and below it.
   EstimationSetup setup = twoObjects();
-  for (stocs::PreparedModel& m : setup.models) {
-    m.model.points.clear();
+  for (std::shared_ptr<const stocs::PreparedModel>& shared : setup.models) {
+    auto m = std::make_shared<stocs::PreparedModel>(*shared);
+    shared = m;
+    m->model.points.clear();
     for (int i = 0; i < 8; ++i) {
-      m.model.points.emplace_back(i & 1 ? 0.05f : -0.05f, i & 2 ? 0.05f : -0.05f,
-                                  i & 4 ? 0.05f : -0.05f);
+      m->model.points.emplace_back(i & 1 ? 0.05f : -0.05f, i & 2 ? 0.05f : -0.05f,
+                                   i & 4 ? 0.05f : -0.05f);
     }
-    m.model.diameter = 0.17f;
+    m->model.diameter = 0.17f;
   }
   FrameResult result;
   result.objects = {outcome(0, true, -0.12f), outcome(1, true, 0.12f)};
@@ -132,7 +134,7 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
     const Eigen::Isometry3f& pose = result.objects[object].estimate.pose;
     // The object's extent in normalized image coordinates (x / z, y / z; y down).
     float left = 1e9f, right = -1e9f, top = 1e9f;
-    for (const Eigen::Vector3f& p : setup.models[object].model.points) {
+    for (const Eigen::Vector3f& p : setup.models[object]->model.points) {
       const Eigen::Vector3f q = pose * p;
       left = std::min(left, q.x() / q.z());
       right = std::max(right, q.x() / q.z());

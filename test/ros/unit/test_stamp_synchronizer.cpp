@@ -2,7 +2,7 @@
 // message_filters supports, newest frame first, and every drop counted by its reason.
 #include <gtest/gtest.h>
 
-#include "stocs_ros/stamp_synchronizer.h"
+#include "stocs_ros/common/stamp_synchronizer.h"
 
 namespace stocs_ros {
 namespace {

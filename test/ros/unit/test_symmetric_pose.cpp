@@ -1,7 +1,7 @@
 // Choosing among the poses a symmetry makes equivalent: the one nearest to the previous pose.
 #include <gtest/gtest.h>
 
-#include "stocs_ros/symmetric_pose.h"
+#include "stocs_ros/common/symmetric_pose.h"
 
 namespace stocs_ros {
 namespace {

@@ -1,0 +1,69 @@
+#pragma once
+// One estimation on one input frame: converts the frame's messages (see cloud_conversion.h and
+// image_conversion.h) into a stocs::Frame and runs the core's frame loop (stocs::estimateFrame) on
+// the requested objects.
+
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
+#include <std_msgs/Header.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "stocs/estimation/frame.h"
+#include "stocs/tracking/stream_tracker.h"
+#include "stocs_ros/common/segmentation_conversion.h"
+#include "stocs_ros/stocs_node/estimation_setup.h"
+
+namespace stocs_ros {
+
+/// One input frame as received: messages are shared, never copied.
+struct FrameMessages {
+  sensor_msgs::PointCloud2ConstPtr cloud;       ///< input.source: cloud
+  sensor_msgs::ImageConstPtr depth;             ///< input.source: depth ...
+  sensor_msgs::CameraInfoConstPtr camera_info;  ///< ... with its camera_info
+  /// Per configured object (index as in config.objects); null where the frame has none.
+  std::vector<sensor_msgs::ImageConstPtr> probabilities;
+  sensor_msgs::ImageConstPtr multichannel;  ///< input.probability: multichannel
+  sensor_msgs::ImageConstPtr boundary;      ///< optional instance boundary map
+  SegmentationMessages segmentation;        ///< input.probability: labels, masks or boxes
+
+  /// The header of the cloud or depth image: the outputs' frame and stamp.
+  const std_msgs::Header& header() const;
+};
+
+struct EstimationJob {
+  FrameMessages frame;
+  std::vector<size_t> objects;        ///< indices into config.objects
+  std::optional<double> time_budget;  ///< seconds per object, instead of the configured one
+  /// The stamp of the frame the synchronizer matched before this one (tracking measures input
+  /// gaps with it, not the time estimation took); none for the first frame and ~estimate calls.
+  std::optional<ros::Time> previous_input;
+};
+
+struct ObjectOutcome {
+  size_t object;  ///< index into config.objects
+  stocs::PoseEstimate estimate;
+  /// Per instance of `estimate` when it was tracked (trackJob); empty when detected.
+  std::vector<stocs::TrackState> states;
+};
+
+struct FrameResult {
+  std_msgs::Header header;
+  std::vector<ObjectOutcome> objects;             ///< one per requested object, found or not
+  std::optional<stocs::TrackingCounts> tracking;  ///< when tracked (trackJob)
+};
+
+/// Throws stocs::InputError naming the input at fault (cloud, an object's probability image, the
+/// boundary map) for bad encodings, sizes or parameters.
+FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup);
+
+/// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp:
+/// followed in the frame, detected in the background (stocs::StreamTracker, which holds `setup`
+/// while it detects); errors as detectJob's.
+FrameResult trackJob(const EstimationJob& job, const std::shared_ptr<const EstimationSetup>& setup,
+                     stocs::StreamTracker& tracker);
+
+}  // namespace stocs_ros

@@ -1,7 +1,0 @@
-// The demo's listener (see demo_recorder.h).
-#include "stocs_ros/demo_recorder.h"
-#include "stocs_ros/run_node.h"
-
-int main(int argc, char** argv) {
-  return stocs_ros::runNode<stocs_ros::DemoRecorder>(argc, argv, "demo_recorder");
-}

@@ -1,0 +1,57 @@
+#include "stocs_ros/stocs_node/frame_processor.h"
+
+namespace stocs_ros {
+namespace {
+
+constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of error
+
+}  // namespace
+
+FrameProcessor::FrameProcessor(ros::NodeHandle& pnh, NodeStatistics& statistics)
+    : statistics_(statistics), output_(pnh) {}
+
+FrameResult FrameProcessor::track(const QueuedJob& queued) {
+  const EstimationSetup& setup = *queued.setup;
+  if (!stream_tracker_ || tracked_models_ != setup.models) {
+    stream_tracker_.emplace(setup.config.tracking);  // a reload may change every object
+    tracked_models_ = setup.models;
+  } else {
+    stream_tracker_->setParams(setup.config.tracking);  // runtime settings keep the tracks
+  }
+  FrameResult result = trackJob(queued.job, queued.setup, *stream_tracker_);
+  if (const std::optional<std::string> error = stream_tracker_->takeDetectionError()) {
+    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: background detection failed: %s", error->c_str());
+  }
+  return result;
+}
+
+FrameResult FrameProcessor::process(const QueuedJob& queued) {
+  // ~estimate calls detect: a call on an older frame or on given inputs must not move the tracks.
+  const bool tracking = !queued.requested && queued.setup->config.tracking.enabled;
+  FrameResult result = tracking ? track(queued) : detectJob(queued.job, *queued.setup);
+  for (ObjectOutcome& o : result.objects) {
+    stocs::PoseEstimate& e = o.estimate;
+    if (e.found) {
+      e.pose = symmetric_choice_.track(o.object, e.pose,
+                                       queued.setup->config.objects[o.object].symmetries);
+    }
+  }
+  const OutputConfig& output = queued.setup->config.output;
+  output_frame_.express(result, output.frame, output.transform_timeout);
+  output_.publish(result, *queued.setup, queued.timeline);
+  statistics_.poses(foundPoses(result).size(), rejectedPoses(result).size());
+  if (result.tracking) statistics_.tracking(*result.tracking);
+  if (!queued.requested) statistics_.estimated();
+  return result;
+}
+
+void FrameProcessor::onFrameError(std::exception_ptr error) {
+  statistics_.rejected(rejectionKind(error));
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::exception& e) {
+    ROS_ERROR_THROTTLE(kWarnPeriod, "stocs: frame rejected: %s (counts on ~statistics)", e.what());
+  }
+}
+
+}  // namespace stocs_ros
