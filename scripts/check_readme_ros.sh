@@ -46,6 +46,7 @@ step run 30 'rostopic echo -n 1 /stocs/statistics' \
   'key: "service calls"'
 step start 120 'roslaunch stocs_ros stocs.launch config:=* cloud:=*' \
   'stocs: 1 objects \(cat\) from .*; waiting for 2 synchronized inputs'
+step run 30 'rosrun dynamic_reconfigure dynparam set /stocs min_confidence 0.6'
 step skip 0 'rosbag play -l' 'a mention in the text of the bag command below'
 step start 60 'roslaunch stocs_ros scene_publisher.launch dataset:=*' \
   'scene_publisher: [0-9]+ frames of .*lmo-cat'

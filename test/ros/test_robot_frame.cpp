@@ -17,6 +17,8 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
 
+#include <algorithm>
+
 #include "ros_test_support.h"
 
 namespace stocs_ros::test {
@@ -67,11 +69,12 @@ dynamic_reconfigure::Config setMinConfidence(double value) {
   return srv.response.config;
 }
 
-std::optional<double> minConfidenceIn(const dynamic_reconfigure::Config& config) {
-  for (const auto& p : config.doubles) {
-    if (p.name == "min_confidence") return p.value;
-  }
-  return std::nullopt;
+/// min_confidence in `config` (a float in the node: compared to the float's precision).
+void expectMinConfidence(const dynamic_reconfigure::Config& config, double expected) {
+  const auto p = std::find_if(config.doubles.begin(), config.doubles.end(),
+                              [](const auto& d) { return d.name == "min_confidence"; });
+  ASSERT_NE(p, config.doubles.end()) << "no min_confidence in the answer";
+  EXPECT_NEAR(p->value, expected, 1e-6);
 }
 
 class RobotFrame : public ::testing::Test {
@@ -81,6 +84,8 @@ class RobotFrame : public ::testing::Test {
 };
 
 TEST_F(RobotFrame, PosesAndTfAreInTheOutputFrameNearTheMovedTruth) {
+  tf2_ros::Buffer buffer;
+  tf2_ros::TransformListener listener(buffer);  // before the poses: TF at their stamp is kept
   const auto objects =
       waitForMessage<ObjectPoseArray>("/stocs/objects", kFirstOutputTimeout,
                                       [](const ObjectPoseArray& m) { return !m.objects.empty(); });
@@ -95,8 +100,6 @@ TEST_F(RobotFrame, PosesAndTfAreInTheOutputFrameNearTheMovedTruth) {
   EXPECT_EQ(poses->header.frame_id, "base_link");
   EXPECT_LT(translationError(poseToEigen(poses->poses[0]), truth_base_), 0.005);
 
-  tf2_ros::Buffer buffer;
-  tf2_ros::TransformListener listener(buffer);
   const Eigen::Isometry3d tf_pose = tf2::transformToEigen(
       buffer.lookupTransform("base_link", "box", poses->header.stamp, ros::Duration(10)));
   EXPECT_LT(translationError(tf_pose, truth_base_), 0.005);
@@ -166,9 +169,9 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
   ASSERT_TRUE(counts_before);
 
   // Out of range: refused, the setting kept.
-  EXPECT_EQ(minConfidenceIn(setMinConfidence(1.5)), std::optional<double>(0.35));
+  expectMinConfidence(setMinConfidence(1.5), 0.35);
   // Above any confidence: the next frame rejects the object, still followed.
-  EXPECT_EQ(minConfidenceIn(setMinConfidence(1.0)), std::optional<double>(1.0));
+  expectMinConfidence(setMinConfidence(1.0), 1.0);
   const auto after = waitForMessage<ObjectPoseArray>(
       "/stocs/objects", 10, [](const ObjectPoseArray& m) { return !m.rejected.empty(); });
   ASSERT_TRUE(after) << "the object was never rejected after the change";
@@ -180,7 +183,7 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
   EXPECT_EQ(statisticsCounts(*counts_after)["tracking resets"],
             statisticsCounts(*counts_before)["tracking resets"]);
 
-  EXPECT_EQ(minConfidenceIn(setMinConfidence(0.35)), std::optional<double>(0.35));
+  expectMinConfidence(setMinConfidence(0.35), 0.35);
   EXPECT_TRUE(waitForMessage<ObjectPoseArray>(
       "/stocs/objects", 10, [](const ObjectPoseArray& m) { return !m.objects.empty(); }));
 }

@@ -77,8 +77,10 @@ void addValue(dynamic_reconfigure::Config& config, const std::string& name,
           config.ints.push_back(named<dynamic_reconfigure::IntParameter>(
               name, static_cast<int>(std::clamp(v, -limit, limit))));
         } else if constexpr (std::is_floating_point_v<T>) {
-          config.doubles.push_back(named<dynamic_reconfigure::DoubleParameter>(
-              name, bound.value_or(static_cast<double>(*f))));
+          // A float's shortest decimal (0.6, not 0.6000000238), as the configuration file has it.
+          const double value = std::stod(fmt::format("{}", *f));
+          config.doubles.push_back(
+              named<dynamic_reconfigure::DoubleParameter>(name, bound.value_or(value)));
         } else {
           config.strs.push_back(
               named<dynamic_reconfigure::StrParameter>(name, stocs::paramText(f)));
