@@ -1,5 +1,5 @@
 // `stocs bench`: every method on every dataset and probability source, each run a child
-// `stocs estimate` process, then the metrics, sweeps and plots of bench_report.h.
+// `stocs estimate` process, then the metrics, sweeps and plots of report/bench_report.h.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <unistd.h>
@@ -8,14 +8,14 @@
 #include <map>
 #include <set>
 
-#include "bench_report.h"
-#include "child_process.h"
 #include "cli_options.h"
 #include "commands.h"
-#include "eval_report.h"
-#include "line_plot.h"
-#include "object_runs.h"
-#include "progress.h"
+#include "report/bench_report.h"
+#include "report/child_process.h"
+#include "report/eval_report.h"
+#include "report/line_plot.h"
+#include "report/object_runs.h"
+#include "report/progress.h"
 #include "stocs/io/bop_results.h"
 #include "stocs/io/pcd_scene_dataset.h"
 #include "stocs/methods/pose_method.h"

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "commands.h"
-#include "object_runs.h"
+#include "report/object_runs.h"
 #include "stocs/estimation/pose_confidence.h"
 #include "stocs/eval/logistic_regression.h"
 #include "stocs/util/error.h"

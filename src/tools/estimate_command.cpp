@@ -12,7 +12,7 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "object_runs.h"
+#include "report/object_runs.h"
 #include "stocs/estimation/frame.h"
 #include "stocs/eval/dataset_evaluation.h"
 #include "stocs/eval/metric_summary.h"

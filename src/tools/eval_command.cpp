@@ -9,9 +9,9 @@
 
 #include "cli_options.h"
 #include "commands.h"
-#include "confidence_report.h"
-#include "coverage_report.h"
-#include "eval_report.h"
+#include "report/confidence_report.h"
+#include "report/coverage_report.h"
+#include "report/eval_report.h"
 #include "stocs/eval/dataset_evaluation.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/sim/probability_source.h"

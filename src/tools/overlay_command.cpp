@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "commands.h"
-#include "pose_overlay.h"
+#include "report/pose_overlay.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_results.h"
 #include "stocs/io/mesh_io.h"
