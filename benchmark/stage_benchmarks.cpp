@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "benchmark_frames.h"
-#include "stocs/estimation/base_sampler.h"
-#include "stocs/estimation/congruent_set_matcher.h"
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/base_sampler.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/geometry/rigid_fit.h"
 #include "stocs/tracking/frame_tracker.h"
 

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <optional>
 
-#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/util/error.h"
 
 namespace stocs {

@@ -8,11 +8,11 @@
 #include <optional>
 #include <vector>
 
-#include "base_scheduler.h"
-#include "base_verification.h"
-#include "candidate_refinement.h"
-#include "stocs/estimation/base_consensus.h"
+#include "scheduling/base_scheduler.h"
+#include "stages/base_verification.h"
+#include "stages/candidate_refinement.h"
 #include "stocs/estimation/instance_separation.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
 namespace {

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stocs/estimation/free_space_check.h"
 #include "stocs/estimation/pipeline.h"
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 
 namespace stocs {
 

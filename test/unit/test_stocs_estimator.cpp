@@ -4,8 +4,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/estimation/icp_refiner.h"
 #include "stocs/estimation/pipeline.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/util/error.h"
 #include "test_support.h"

@@ -2,9 +2,9 @@
 // One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
 // the benchmark and the ROS node so all of them run exactly the same estimation.
 
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/pose_confidence.h"
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/pose_confidence.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"

@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "stocs/estimation/base_sampler.h"
-#include "stocs/estimation/congruent_set_matcher.h"
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/icp_refiner.h"
-#include "stocs/estimation/lcp_scorer.h"
-#include "stocs/estimation/pose_confidence.h"
 #include "stocs/estimation/pose_proximity.h"
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/base_sampler.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/icp_refiner.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
+#include "stocs/estimation/stages/pose_confidence.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/model/model_cache.h"
 #include "stocs/util/param_set.h"
 

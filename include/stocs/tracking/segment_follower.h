@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "stocs/estimation/frame.h"
-#include "stocs/estimation/icp_refiner.h"
-#include "stocs/estimation/lcp_scorer.h"
 #include "stocs/estimation/pose_proximity.h"
+#include "stocs/estimation/stages/icp_refiner.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 
 namespace stocs {
 

@@ -10,10 +10,10 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/estimation/base_sampler.h"
-#include "stocs/estimation/congruent_set_matcher.h"
-#include "stocs/estimation/lcp_scorer.h"
 #include "stocs/estimation/pose_proximity.h"
+#include "stocs/estimation/stages/base_sampler.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/util/random.h"
 

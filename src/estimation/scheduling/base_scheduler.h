@@ -9,9 +9,9 @@
 #include <optional>
 #include <vector>
 
-#include "base_verification.h"
-#include "candidate_refinement.h"
-#include "stocs/estimation/base_consensus.h"
+#include "stages/base_verification.h"
+#include "stages/candidate_refinement.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
 

@@ -1,4 +1,4 @@
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 
 #include <fmt/format.h>
 
