@@ -103,17 +103,6 @@ void addConsensus(const ObjectModel& model, const Eigen::Vector3f& centre, float
 
 }  // namespace
 
-void PoseEstimate::takeFirstInstance() {
-  found = !instances.empty();
-  if (!found) return;
-  const InstancePose& best = instances.front();
-  pose = best.pose;
-  score = best.score;
-  lcp = best.lcp;
-  refined = best.refined;
-  region = best.region;
-}
-
 const ParamSet<StocsParams>& StocsParams::schema() {
   static const ParamSet<StocsParams> schema =
       ParamSet<StocsParams>()

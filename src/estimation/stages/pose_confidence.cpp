@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "stocs/estimation/stocs_estimator.h"
+#include "stocs/estimation/pose_estimate.h"
 
 namespace stocs {
 namespace {
