@@ -1,7 +1,9 @@
 #pragma once
-// StoCS (paper Algorithm 1) as a pipeline of named stages: BaseSampler -> CongruentSetMatcher ->
-// fitRigid -> LcpScorer, then optional point-to-plane refinement. The anytime loop stops after a
-// number of bases or a time budget.
+// The StoCS search (paper Algorithm 1) and its parameters. StocsEstimator::estimate is the driver:
+// it runs the paper's stages (stages/: BaseSampler -> CongruentSetMatcher -> fitRigid ->
+// LcpScorer per base, then point-to-plane refinement of the best bases) under the scheduling added
+// around them (scheduling/: the bases shared out among threads, the consensus stop, early
+// refinements, the time budget).
 //
 // Determinism: base b draws from its own random stream streamSeed(seed, b), and ties between equal
 // scores go to the lower (base, set) index, so with a base limit and no time budget the result is
@@ -10,7 +12,6 @@
 
 #include <Eigen/Geometry>
 #include <chrono>
-#include <optional>
 #include <vector>
 
 #include "stocs/estimation/pose_estimate.h"
@@ -26,7 +27,6 @@
 
 namespace stocs {
 
-class BaseConsensus;
 class EarlyRefinements;
 struct BaseOutcome;
 struct RefinementContext;
@@ -96,10 +96,11 @@ class StocsEstimator {
   /// temporary would dangle.
   StocsEstimator(PreparedModel&&, const StocsParams&) = delete;
 
-  /// With `free_space` (the frame's organized cloud), the refined candidates compete by their
-  /// objective times (1 - FreeSpaceCheck::violation): of poses that explain the segment alike, the
-  /// one that puts no surface where the sensor sees through wins. Reported scores stay the
-  /// objective's.
+  /// Algorithm 1 on `segment`: the object's best pose and further instances (StocsParams::
+  /// instances), unjudged. With `free_space` (the frame's organized cloud), the refined candidates
+  /// compete by their objective times (1 - FreeSpaceCheck::violation): of poses that explain the
+  /// segment alike, the one that puts no surface where the sensor sees through wins. Reported
+  /// scores stay the objective's.
   PoseEstimate estimate(const SoftSegment& segment,
                         const FreeSpaceCheck* free_space = nullptr) const;
 
@@ -110,9 +111,6 @@ class StocsEstimator {
   size_t refinedBases() const;
   /// Base scores each thread keeps for its pruning bound (BaseStages::keep).
   size_t keptScores() const;
-  /// The consensus stop for `outcomes`, or none (StocsParams::consensus_bases).
-  std::optional<BaseConsensus> consensus(const FreeSpaceCheck* free_space,
-                                         const std::vector<BaseOutcome>& outcomes) const;
   /// The anytime loop over the bases on `threads` threads (the base loop of Algorithm 1), with
   /// early refinement of finished bases; every base's outcome, cleared past a consensus stop.
   std::vector<BaseOutcome> runBases(const SoftSegment& segment, const LcpScorer& scorer,

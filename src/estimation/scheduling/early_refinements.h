@@ -1,47 +1,15 @@
 #pragma once
-// How the threads share an estimate's work: the bases in index order with the consensus stop
-// between blocks (BaseDispenser), and, with few bases, the refinement of finished bases' poses by a
-// thread that has run out of bases (EarlyRefinements).
+// With few bases, the refinement of finished bases' poses by a thread that has run out of bases.
 
 #include <atomic>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <vector>
 
 #include "stages/base_verification.h"
 #include "stages/candidate_refinement.h"
-#include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
-
-/// Hands out the bases to the threads in index order and runs the consensus stop between blocks
-/// without a barrier: whoever completes the last outstanding base of a block checks it (blocks in
-/// order), while the other threads go on with the next bases. Once a block reaches consensus, no
-/// base after it starts, and those already started are dropped (dropSpeculative), so the result
-/// is that of the bases up to that block for every thread count. A thread takes bases in
-/// increasing order, so its pruning bound (the best scores it has seen) only ever holds bases of
-/// lower index than the one it verifies: a dropped base never changes a kept one.
-class BaseDispenser {
- public:
-  BaseDispenser(int bases, BaseConsensus* consensus, std::vector<BaseOutcome>& outcomes);
-
-  /// The next base to run, or -1 when none is left.
-  int next();
-  /// Base `b` has run (its outcome is written): check the blocks it completes.
-  void finished(int b);
-  /// After the threads are done: clears the outcomes of bases started after the consensus.
-  void dropSpeculative();
-
- private:
-  std::atomic<int> next_{0};
-  std::atomic<int> end_;  // bases from here on do not count
-  BaseConsensus* consensus_;
-  std::vector<BaseOutcome>& outcomes_;
-  std::mutex mutex_;
-  std::vector<char> finished_;  // per base, under mutex_
-  int complete_ = 0;            // bases before it have all finished, under mutex_
-};
 
 /// With no more bases than ICP candidates, every base's best is a candidate: a thread out of bases
 /// begins refining those of finished bases (their first steps, firstSteps) while the other threads
