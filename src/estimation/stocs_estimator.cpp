@@ -201,8 +201,8 @@ std::vector<BaseOutcome> StocsEstimator::runBases(const SoftSegment& segment,
   return outcomes;
 }
 
-PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
-                                      const FreeSpaceCheck* free_space) const {
+PoseEstimate StocsEstimator::search(const SoftSegment& segment,
+                                    const FreeSpaceCheck* free_space) const {
   const Clock::time_point start = Clock::now();
   PoseEstimate result;
   if (segment.size() < 4) {

@@ -14,7 +14,7 @@ namespace stocs {
 
 /// Seconds spent in each stage, summed over threads (the paper's Table 1c breakdown).
 struct StageSeconds {
-  double segment = 0;  ///< the soft segment (estimateObject)
+  double segment = 0;  ///< the soft segment (detectObject)
   double sampling = 0;
   double matching = 0;
   double verification = 0;  ///< rigid fits and scoring
@@ -71,7 +71,7 @@ struct PoseEstimate {
   long finished = 0;   ///< hypotheses scored beyond their head (StocsParams::finished_per_base)
   long icp_steps = 0;  ///< ICP steps taken by all refined candidates
   StageSeconds stages;
-  /// Wall time: StocsEstimator::estimate alone, or with the soft segment (estimateObject) or the
+  /// Wall time: StocsEstimator::search alone, or with the soft segment (detectObject) or the
   /// method's own steps (PoseMethod).
   double seconds = 0;
 

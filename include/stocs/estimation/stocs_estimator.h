@@ -1,5 +1,5 @@
 #pragma once
-// The StoCS search (paper Algorithm 1) and its parameters. StocsEstimator::estimate is the driver:
+// The StoCS search (paper Algorithm 1) and its parameters. StocsEstimator::search is the driver:
 // it runs the paper's stages (stages/: BaseSampler -> CongruentSetMatcher -> fitRigid ->
 // LcpScorer per base, then point-to-plane refinement of the best bases) under the scheduling added
 // around them (scheduling/: the bases shared out among threads, the consensus stop, early
@@ -101,8 +101,7 @@ class StocsEstimator {
   /// compete by their objective times (1 - FreeSpaceCheck::violation): of poses that explain the
   /// segment alike, the one that puts no surface where the sensor sees through wins. Reported
   /// scores stay the objective's.
-  PoseEstimate estimate(const SoftSegment& segment,
-                        const FreeSpaceCheck* free_space = nullptr) const;
+  PoseEstimate search(const SoftSegment& segment, const FreeSpaceCheck* free_space = nullptr) const;
 
   const StocsParams& params() const { return params_; }
 

@@ -31,7 +31,7 @@ class SegmentFollower {
 
   /// The pose refined from `predicted`, with its objective, covariance, evidence and verdict.
   InstancePose follow(const Eigen::Isometry3f& predicted) const;
-  /// StoCS on the box's segment alone (estimateOnSegment): the local search after a failure.
+  /// StoCS on the box's segment alone (detectOnSegment): the local search after a failure.
   PoseEstimate search() const;
 
   const SoftSegment& segment() const { return segment_; }
