@@ -31,7 +31,7 @@ void segmentSize(benchmark::State& state) {
       f.cloud, clutteredProbability(f.probability, static_cast<int>(state.range(0))), f.focal,
       p.segment);
   const StocsEstimator estimator(f.model, p.stocs);
-  for (auto _ : state) benchmark::DoNotOptimize(estimator.estimate(segment));
+  for (auto _ : state) benchmark::DoNotOptimize(estimator.search(segment));
   state.SetComplexityN(static_cast<int64_t>(segment.size()));
   state.counters["segment_points"] = static_cast<double>(segment.size());
 }
@@ -42,7 +42,7 @@ void modelSize(benchmark::State& state) {
   p.model.sampling.sampling_ratio = static_cast<float>(state.range(0)) / 1000.0f;
   const PreparedModel model = prepareModelFile(f.model_file, 0.001f, p.model);
   const StocsEstimator estimator(model, p.stocs);
-  for (auto _ : state) benchmark::DoNotOptimize(estimator.estimate(f.segment));
+  for (auto _ : state) benchmark::DoNotOptimize(estimator.search(f.segment));
   state.SetComplexityN(static_cast<int64_t>(model.model.size()));
   state.counters["model_points"] = static_cast<double>(model.model.size());
 }

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "benchmark_frames.h"
-#include "stocs/estimation/base_sampler.h"
-#include "stocs/estimation/congruent_set_matcher.h"
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/base_sampler.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/geometry/rigid_fit.h"
 #include "stocs/tracking/frame_tracker.h"
 
@@ -87,7 +87,7 @@ constexpr uint64_t kFullEstimateSeeds = 10;
 /// Runs the estimator on a frame, seed i % kFullEstimateSeeds on iteration i, with the benchmark
 /// parameters as `configure` sets them. One seed's bases can be cheaper or dearer than the frame's
 /// typical run, and code that changes the random stream must not look faster or slower for that
-/// alone. The free-space check is the pipeline's (estimateObject): it ranks the refined candidates
+/// alone. The free-space check is the pipeline's (detectObject): it ranks the refined candidates
 /// and guards the consensus stop.
 template <class Configure>
 void runEstimates(benchmark::State& state, const Frame& f, Configure&& configure) {
@@ -105,7 +105,7 @@ void runEstimates(benchmark::State& state, const Frame& f, Configure&& configure
   size_t i = 0;
   int bases = 0, draws = 0;
   for (auto _ : state) {
-    const PoseEstimate e = estimators[i++ % kFullEstimateSeeds].estimate(f.segment, &free_space);
+    const PoseEstimate e = estimators[i++ % kFullEstimateSeeds].search(f.segment, &free_space);
     bases += e.bases_tried;
     draws += e.base_draws;
     benchmark::DoNotOptimize(e);
@@ -131,7 +131,7 @@ void fewBases(benchmark::State& state, const Frame& (*get)()) {
   });
 }
 
-/// The whole per-object pipeline as the CLI, the side by side and the node run it (estimateObject
+/// The whole per-object pipeline as the CLI, the side by side and the node run it (detectObject
 /// with the frame's intrinsics: soft segment, instance regions where the frame has a boundary map,
 /// free-space check, StoCS) at
 /// the few bases of the side by side's equal-accuracy points, on all cores; seed i % 10 on
@@ -146,7 +146,7 @@ void pipeline(benchmark::State& state, const Frame& (*get)()) {
   for (auto _ : state) {
     p.stocs.seed = i++ % kFullEstimateSeeds;
     benchmark::DoNotOptimize(
-        estimateObject(f.cloud, f.focal, f.probability, f.model, p, boundary, &f.camera));
+        detectObject(f.cloud, f.focal, f.probability, f.model, p, boundary, &f.camera));
   }
 }
 

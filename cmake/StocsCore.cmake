@@ -9,11 +9,12 @@
 # `stocs::core` is all of them, for programs that use every module (the tool, the tests).
 
 # stocs_add_module(NAME [PUBLIC deps...] [PRIVATE deps...]): the library stocs_NAME (alias
-# stocs::NAME) of src/NAME/*.cpp, or an interface library for a module of headers only.
+# stocs::NAME) of src/NAME/**/*.cpp (sub-folders group a module's sources: one library still), or
+# an interface library for a module of headers only.
 function(stocs_add_module module)
   cmake_parse_arguments(M "" "" "PUBLIC;PRIVATE" ${ARGN})
   set(target stocs_${module})
-  file(GLOB sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${module}/*.cpp)
+  file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${module}/*.cpp)
   if(sources)
     add_library(${target} ${sources})
     target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/src/${module})

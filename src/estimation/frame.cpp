@@ -32,9 +32,9 @@ Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
   return frame;
 }
 
-PoseEstimate estimateWithStocs(const ObjectInput& in) {
-  return estimateObject(*in.cloud, static_cast<float>(in.camera->fx), *in.probability, *in.model,
-                        *in.params, in.boundary, in.camera);
+PoseEstimate detectObject(const ObjectInput& in) {
+  return detectObject(*in.cloud, static_cast<float>(in.camera->fx), *in.probability, *in.model,
+                      *in.params, in.boundary, in.camera);
 }
 
 CameraIntrinsics frameCamera(const Frame& frame) {
@@ -59,6 +59,12 @@ void forObject(const std::string& name, const std::function<void()>& step) {
   } catch (const InputError& e) {
     throw InputError(fmt::format("object '{}': {}", name, e.what()));
   }
+}
+
+std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
+                                        const PipelineParams& params) {
+  return estimateFrame(frame, objects, params,
+                       [](const ObjectInput& in) { return detectObject(in); });
 }
 
 std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,

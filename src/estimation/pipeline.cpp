@@ -6,7 +6,7 @@
 #include <chrono>
 #include <optional>
 
-#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -46,9 +46,9 @@ void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpace
   judgePose(pose, params);
 }
 
-PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
-                               const cv::Mat& probability, const PreparedModel& model,
-                               const PipelineParams& params, const CameraIntrinsics* camera) {
+PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
+                             const cv::Mat& probability, const PreparedModel& model,
+                             const PipelineParams& params, const CameraIntrinsics* camera) {
   std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
   if (!camera) {                              // also for the confidence evidence
     try {
@@ -61,8 +61,8 @@ PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud&
   std::optional<FreeSpaceCheck> surface;  // ranks candidates when enabled, always gives evidence
   if (camera) surface.emplace(cloud, *camera, params.stocs.free_space);
   const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
-  PoseEstimate result = StocsEstimator(model, params.stocs)
-                            .estimate(segment, rank_by_free_space ? &*surface : nullptr);
+  PoseEstimate result =
+      StocsEstimator(model, params.stocs).search(segment, rank_by_free_space ? &*surface : nullptr);
   for (InstancePose& pose : result.instances) {
     judgeInstance(pose, model.model, surface ? &*surface : nullptr, probability, params.confidence);
   }
@@ -70,16 +70,16 @@ PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud&
   return result;
 }
 
-PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
-                            const PreparedModel& model, const PipelineParams& params,
-                            const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
+PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
+                          const PreparedModel& model, const PipelineParams& params,
+                          const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   const double segment_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  PoseEstimate result = estimateOnSegment(segment, cloud, probability, model, params, camera);
+  PoseEstimate result = detectOnSegment(segment, cloud, probability, model, params, camera);
   result.stages.segment = segment_seconds;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -8,27 +8,19 @@
 #include <optional>
 #include <vector>
 
-#include "base_scheduler.h"
-#include "base_verification.h"
-#include "candidate_refinement.h"
-#include "stocs/estimation/base_consensus.h"
+#include "elapsed.h"
+#include "scheduling/base_dispenser.h"
+#include "scheduling/consensus_stop.h"
+#include "scheduling/early_refinements.h"
+#include "stages/base_verification.h"
+#include "stages/candidate_refinement.h"
 #include "stocs/estimation/instance_separation.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-/// The consensus stop's free-space limit: the best base's pose may put at most this share of its
-/// camera-facing surface where the sensor sees through. The wrong poses that agreement alone stops
-/// on (slid boxes, turned-over blocks) put far more there; objects whose best raw pose exceeds the
-/// limit just run every base. The unrefined pose is judged: ICP also pulls wrong poses out of
-/// free space.
-constexpr float kConsensusFreeSpace = 0.05f;
 
 /// The scorer and the ICP refiner of a segment. Without instance regions each builds a
 /// neighbourhood grid over the whole segment (milliseconds on large segments, before any base can
@@ -103,17 +95,6 @@ void addConsensus(const ObjectModel& model, const Eigen::Vector3f& centre, float
 
 }  // namespace
 
-void PoseEstimate::takeFirstInstance() {
-  found = !instances.empty();
-  if (!found) return;
-  const InstancePose& best = instances.front();
-  pose = best.pose;
-  score = best.score;
-  lcp = best.lcp;
-  refined = best.refined;
-  region = best.region;
-}
-
 const ParamSet<StocsParams>& StocsParams::schema() {
   static const ParamSet<StocsParams> schema =
       ParamSet<StocsParams>()
@@ -181,21 +162,6 @@ size_t StocsEstimator::refinedBases() const {
   return params_.icp.enabled ? static_cast<size_t>(params_.icp.candidates) : 1;
 }
 
-std::optional<BaseConsensus> StocsEstimator::consensus(
-    const FreeSpaceCheck* free_space, const std::vector<BaseOutcome>& outcomes) const {
-  if (params_.instances > 1 || params_.consensus_bases == 0) return std::nullopt;
-  // With a free-space check, agreement must be on a pose that keeps its surface out of free space.
-  BaseConsensus::Accept clear;
-  if (free_space) {
-    clear = [free_space, &outcomes, this](int b) {
-      return free_space->violation(model_.model, outcomes[b].pose) <= kConsensusFreeSpace;
-    };
-  }
-  return std::make_optional<BaseConsensus>(model_.model,
-                                           params_.instance_separation * model_.model.diameter,
-                                           params_.consensus_bases, std::move(clear));
-}
-
 size_t StocsEstimator::keptScores() const {
   // The K best bases go on to refinement, so a hypothesis matters when it can still beat its own
   // base's best and the K-th best base score seen so far. Several instances need every base's
@@ -215,20 +181,17 @@ std::vector<BaseOutcome> StocsEstimator::runBases(const SoftSegment& segment,
                                                   EarlyRefinements& early, int threads,
                                                   Clock::time_point start) const {
   const BaseSampler sampler(segment, model_.ppf_map, params_.base);
-  BaseStages stages{segment,    sampler, matcher_,     scorer,      model_.model,
-                    proximity_, params_, keptScores(), std::nullopt};
-  if (params_.time_budget > 0) {
-    stages.deadline = start + std::chrono::duration_cast<Clock::duration>(
-                                  std::chrono::duration<double>(params_.time_budget));
-  }
+  const BaseStages stages{segment,      sampler,    matcher_, scorer,
+                          model_.model, proximity_, params_,  keptScores()};
   std::vector<BaseOutcome> outcomes(static_cast<size_t>(params_.bases));
-  std::optional<BaseConsensus> stop = consensus(free_space, outcomes);
-  BaseDispenser dispenser(params_.bases, stop ? &*stop : nullptr, outcomes);
+  std::optional<BaseConsensus> stop = consensusStop(model_.model, params_, free_space, outcomes);
+  BaseDispenser dispenser(params_.bases, stop ? &*stop : nullptr,
+                          searchDeadline(params_.time_budget, start), outcomes);
 #pragma omp parallel num_threads(threads)
   {
     BaseVerifier verifier(stages);
     for (int b; (b = dispenser.next()) >= 0;) {
-      verifier.run(b, outcomes[static_cast<size_t>(b)]);
+      if (dispenser.inTime()) verifier.run(b, outcomes[static_cast<size_t>(b)]);
       dispenser.finished(b);
       early.finished(b);
     }
@@ -238,8 +201,8 @@ std::vector<BaseOutcome> StocsEstimator::runBases(const SoftSegment& segment,
   return outcomes;
 }
 
-PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
-                                      const FreeSpaceCheck* free_space) const {
+PoseEstimate StocsEstimator::search(const SoftSegment& segment,
+                                    const FreeSpaceCheck* free_space) const {
   const Clock::time_point start = Clock::now();
   PoseEstimate result;
   if (segment.size() < 4) {
@@ -257,7 +220,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
       icp && params_.instances == 1 && static_cast<size_t>(params_.bases) <= refinedBases(),
       icp ? firstSteps(icp->params(), static_cast<size_t>(params_.bases)) : 0);
 
-  // Algorithm 1: every base drawn, matched, fitted and verified; each keeps its best hypothesis.
+  // Algorithm 1's loop: every base drawn (Algorithm 2), its congruent sets found, each fitted and
+  // scored by the objective f; each base keeps its best hypothesis (BaseVerifier).
   const std::vector<BaseOutcome> outcomes =
       runBases(segment, *indexes.scorer, free_space, refinement, early, threads, start);
   const std::vector<Hypothesis> ranked = rankBases(outcomes, result);
@@ -265,7 +229,8 @@ PoseEstimate StocsEstimator::estimate(const SoftSegment& segment,
     result.seconds = secondsSince(start);
     return result;
   }
-  // The best bases refined; the best refined pose (and further distinct instances) returned.
+  // Its T_opt, refined: the best bases refined, the best refined pose (and further distinct
+  // instances) returned.
   const Clock::time_point t = Clock::now();
   result.instances =
       selectInstances(ranked, refinedBases(), static_cast<size_t>(params_.instances), refinement,

@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include "hard_segment.h"
-#include "stocs/estimation/icp_refiner.h"
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/icp_refiner.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 
 namespace stocs {
 namespace {

@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <optional>
 
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/methods/pose_method.h"
 
 namespace stocs {

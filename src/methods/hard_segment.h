@@ -5,7 +5,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/methods/pose_method.h"
 
 namespace stocs {

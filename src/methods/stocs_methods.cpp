@@ -6,7 +6,7 @@
 namespace stocs {
 
 PoseEstimate StocsMethod::estimate(const ObjectInput& in) {
-  return estimateWithStocs(in);
+  return detectObject(in);
 }
 
 PoseEstimate HardSegmentStocsMethod::estimate(const ObjectInput& in) {
@@ -17,7 +17,7 @@ PoseEstimate HardSegmentStocsMethod::estimate(const ObjectInput& in) {
   ObjectInput hard = in;
   hard.params = &params;
   hard.probability = &probability;
-  return estimateWithStocs(hard);
+  return detectObject(hard);
 }
 
 }  // namespace stocs

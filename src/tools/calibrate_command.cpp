@@ -10,7 +10,7 @@
 
 #include "commands.h"
 #include "report/object_runs.h"
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 #include "stocs/eval/logistic_regression.h"
 #include "stocs/util/error.h"
 

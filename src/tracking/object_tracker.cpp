@@ -69,8 +69,9 @@ class ObjectTracker::Step {
       out.searched = true;
     }
     if (detect && (unsettled() || scheduled)) {
-      search = estimateObject(*in_.cloud, static_cast<float>(in_.camera->fx), *in_.probability,
-                              *in_.model, *in_.params, in_.boundary, in_.camera);
+      // This object alone, when its own tracks need it: the frame tracker steps its objects in
+      // parallel, each on its own schedule, so the frame's entry point does not fit here.
+      search = detectObject(in_);
       tracker_.detectionRan(*search);
       moved = assign(*search) || moved;
       out.detected = true;

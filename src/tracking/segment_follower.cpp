@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stocs/estimation/free_space_check.h"
 #include "stocs/estimation/pipeline.h"
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 
 namespace stocs {
 
@@ -51,8 +51,10 @@ InstancePose SegmentFollower::follow(const Eigen::Isometry3f& predicted) const {
 }
 
 PoseEstimate SegmentFollower::search() const {
-  return estimateOnSegment(segment_, *in_.cloud, *in_.probability, *in_.model, *in_.params,
-                           in_.camera);
+  // The search is confined to the box around the lost pose: the segment is the box's, not the
+  // frame's, so the per-segment step rather than the frame's entry point.
+  return detectOnSegment(segment_, *in_.cloud, *in_.probability, *in_.model, *in_.params,
+                         in_.camera);
 }
 
 }  // namespace stocs

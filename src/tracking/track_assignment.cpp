@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "stocs/estimation/base_consensus.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "stocs/estimation/base_consensus.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 #include "stocs/model/object_model.h"
 #include "test_support.h"
 

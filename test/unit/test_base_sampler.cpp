@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "stocs/estimation/base_sampler.h"
+#include "stocs/estimation/stages/base_sampler.h"
 #include "stocs/util/error.h"
 #include "test_support.h"
 

@@ -1,6 +1,6 @@
 // BoundaryRegions against cv::connectedComponents (4-connectivity), which defines the regions: the
 // same region number at every pixel, on hand-made shapes, random maps and the real boundary maps.
-#include "stocs/estimation/boundary_regions.h"
+#include "stocs/estimation/stages/boundary_regions.h"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <Eigen/Geometry>
 #include <set>
 
-#include "stocs/estimation/congruent_set_matcher.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
 #include "stocs/geometry/rigid_fit.h"
 #include "stocs/util/error.h"
 #include "test_support.h"

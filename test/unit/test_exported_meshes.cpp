@@ -41,8 +41,8 @@ Eigen::Isometry3f estimateCat(const CatFrame& frame, const ModelCache& cache, co
   PipelineParams params;
   params.stocs.seed = 1;
   const PreparedModel prepared = cache.load(model.string(), unit_scale, params.model);
-  const PoseEstimate r = estimateObject(frame.cloud, frame.focal_px, frame.probability, prepared,
-                                        params, frame.boundary.empty() ? nullptr : &frame.boundary);
+  const PoseEstimate r = detectObject(frame.cloud, frame.focal_px, frame.probability, prepared,
+                                      params, frame.boundary.empty() ? nullptr : &frame.boundary);
   EXPECT_TRUE(r.found) << model;
   return r.pose;
 }

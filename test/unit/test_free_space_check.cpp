@@ -5,7 +5,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
-#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/util/error.h"
 
 namespace stocs {

@@ -2,7 +2,7 @@
 // correspondence is exact and only the step itself can go wrong.
 #include <gtest/gtest.h>
 
-#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/model/object_model.h"
 #include "stocs/sim/object_catalogue.h"

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <random>
 
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/util/error.h"
 
 namespace stocs {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/methods/pose_method.h"
 #include "stocs/util/error.h"

@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/shape_meshes.h"
 #include "test_support.h"

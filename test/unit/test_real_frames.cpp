@@ -40,8 +40,8 @@ void expectNineOfTenSeeds(const std::filesystem::path& root, const Frame& f) {
   for (uint64_t seed = 1; seed <= 10; ++seed) {
     PipelineParams p = params;
     p.stocs.seed = seed;
-    const PoseEstimate r = estimateObject(cloud, static_cast<float>(k.fx), probability, model, p,
-                                          boundary.empty() ? nullptr : &boundary);
+    const PoseEstimate r = detectObject(cloud, static_cast<float>(k.fx), probability, model, p,
+                                        boundary.empty() ? nullptr : &boundary);
     double best = 1e9;
     if (r.found && r.instances.front().accepted) {  // a rejected pose is not published
       const RigidPose est{r.pose.linear().cast<double>(),

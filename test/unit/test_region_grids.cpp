@@ -1,6 +1,6 @@
 // RegionGrids: each grid answers as a grid built over its points would, whichever thread builds it
 // first.
-#include "stocs/estimation/region_grids.h"
+#include "stocs/estimation/stages/region_grids.h"
 
 #include <gtest/gtest.h>
 

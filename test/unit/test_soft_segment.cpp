@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 #include <string>
 
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/geometry/normals.h"
 #include "stocs/geometry/organized_cloud.h"
 #include "stocs/io/probability_image.h"

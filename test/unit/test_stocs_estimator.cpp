@@ -4,8 +4,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "stocs/estimation/icp_refiner.h"
 #include "stocs/estimation/pipeline.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 #include "stocs/eval/pose_metrics.h"
 #include "stocs/util/error.h"
 #include "test_support.h"
@@ -40,7 +40,7 @@ class StocsEstimatorTest : public ::testing::Test {
 
   /// The whole pipeline (soft segment, estimate) on the rendered frame.
   PoseEstimate estimate(const PipelineParams& params) const {
-    return estimateObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
+    return detectObject(cloud_, static_cast<float>(camera_.fx), probability_, model_, params);
   }
 
   SoftSegment segment(const PipelineParams& params) const {
@@ -115,10 +115,10 @@ TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
   PipelineParams params;
   params.stocs.seed = 42;
   params.stocs.threads = 1;
-  const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate one = StocsEstimator(model_, params.stocs).search(segment(params));
   params.stocs.threads = 2;
-  const PoseEstimate two = StocsEstimator(model_, params.stocs).estimate(segment(params));
-  const PoseEstimate again = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate two = StocsEstimator(model_, params.stocs).search(segment(params));
+  const PoseEstimate again = StocsEstimator(model_, params.stocs).search(segment(params));
   ASSERT_TRUE(one.found);
   EXPECT_EQ(one.pose.matrix(), two.pose.matrix());
   EXPECT_EQ(two.pose.matrix(), again.pose.matrix());
@@ -140,13 +140,13 @@ TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
   for (int bases : {2, 3, 5}) {
     params.stocs.bases = bases;
     params.stocs.threads = 1;
-    const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(seg);
+    const PoseEstimate one = StocsEstimator(model_, params.stocs).search(seg);
     ASSERT_TRUE(one.found) << bases;
     EXPECT_TRUE(one.refined) << bases;
     EXPECT_GT(one.icp_steps, 0) << bases;
     for (int threads : {2, 3, 8}) {
       params.stocs.threads = threads;
-      const PoseEstimate many = StocsEstimator(model_, params.stocs).estimate(seg);
+      const PoseEstimate many = StocsEstimator(model_, params.stocs).search(seg);
       EXPECT_EQ(many.pose.matrix(), one.pose.matrix()) << bases << " bases, " << threads;
       EXPECT_EQ(many.lcp.score, one.lcp.score) << bases << " bases, " << threads;
       // The same steps: begun early, a candidate still takes only the screening steps unless it
@@ -159,9 +159,9 @@ TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
 TEST_F(StocsEstimatorTest, RefinementMovesTowardTheTruthAndKeepsTheObjective) {
   PipelineParams params;
   params.stocs.seed = 7;
-  const PoseEstimate refined = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate refined = StocsEstimator(model_, params.stocs).search(segment(params));
   params.stocs.icp.enabled = false;
-  const PoseEstimate raw = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate raw = StocsEstimator(model_, params.stocs).search(segment(params));
   ASSERT_TRUE(refined.found && raw.found);
   EXPECT_TRUE(refined.refined);
   EXPECT_FALSE(raw.refined);
@@ -197,12 +197,12 @@ TEST_F(StocsEstimatorTest, IcpScreeningKeepsTheFinalists) {
   params.stocs.consensus_bases = 0;  // every base: all 10 candidates
   const SoftSegment seg = segment(params);
   params.stocs.icp.screening_iterations = 0;
-  const PoseEstimate full = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate full = StocsEstimator(model_, params.stocs).search(seg);
   params.stocs.icp.screening_iterations = 8;
   params.stocs.icp.finalists = params.stocs.icp.candidates;
-  const PoseEstimate all_finalists = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate all_finalists = StocsEstimator(model_, params.stocs).search(seg);
   params.stocs.icp.finalists = 2;
-  const PoseEstimate screened = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate screened = StocsEstimator(model_, params.stocs).search(seg);
   ASSERT_TRUE(full.found && all_finalists.found && screened.found);
   EXPECT_EQ(all_finalists.pose.matrix(), full.pose.matrix());
   EXPECT_LT(addsOf(screened), 0.05 * model_.model.diameter);
@@ -212,9 +212,9 @@ TEST_F(StocsEstimatorTest, IcpScreeningKeepsTheFinalists) {
   // step would leave the candidates that are not finalists a step from their start).
   params.stocs.instances = 3;
   params.stocs.icp.screening_iterations = 1;
-  const PoseEstimate several = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate several = StocsEstimator(model_, params.stocs).search(seg);
   params.stocs.icp.screening_iterations = 0;
-  const PoseEstimate several_full = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate several_full = StocsEstimator(model_, params.stocs).search(seg);
   ASSERT_EQ(several.instances.size(), several_full.instances.size());
   for (size_t k = 0; k < several.instances.size(); ++k) {
     EXPECT_EQ(several.instances[k].pose.matrix(), several_full.instances[k].pose.matrix()) << k;
@@ -226,7 +226,7 @@ TEST_F(StocsEstimatorTest, ATimeBudgetStopsTheLoop) {
   params.stocs.bases = 100000;
   params.stocs.consensus_bases = 0;  // the budget alone ends the loop
   params.stocs.time_budget = 0.05;
-  const PoseEstimate e = StocsEstimator(model_, params.stocs).estimate(segment(params));
+  const PoseEstimate e = StocsEstimator(model_, params.stocs).search(segment(params));
   EXPECT_LT(e.bases_tried, 100000);
   EXPECT_LT(e.seconds, 5.0);  // generous: the loop stops starting bases after 50 ms
 }
@@ -236,9 +236,9 @@ TEST_F(StocsEstimatorTest, ConsensusEndsTheLoopEarlyWithTheSameAnswerOnAnyThread
   for (uint64_t seed : {1u, 2u, 3u}) {
     params.stocs.seed = seed;
     params.stocs.threads = 1;
-    const PoseEstimate one = StocsEstimator(model_, params.stocs).estimate(segment(params));
+    const PoseEstimate one = StocsEstimator(model_, params.stocs).search(segment(params));
     params.stocs.threads = 2;
-    const PoseEstimate two = StocsEstimator(model_, params.stocs).estimate(segment(params));
+    const PoseEstimate two = StocsEstimator(model_, params.stocs).search(segment(params));
     ASSERT_TRUE(one.found) << "seed " << seed;
     // The block is plainly visible: its bases agree long before the hundredth, and the loop ends
     // between whole blocks of bases.
@@ -255,10 +255,10 @@ TEST_F(StocsEstimatorTest, ConsensusNeverStopsASearchForSeveralInstances) {
   params.stocs.seed = 1;
   params.stocs.consensus_bases = 1;  // the first block would always end it
   params.stocs.instances = 2;
-  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(segment(params)).bases_tried,
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).search(segment(params)).bases_tried,
             params.stocs.bases);
   params.stocs.instances = 1;
-  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(segment(params)).bases_tried,
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).search(segment(params)).bases_tried,
             StocsParams::kConsensusBlock);
 }
 
@@ -270,27 +270,27 @@ TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget)
   params.stocs.base_draw_budget = 0;  // one draw per base
   params.stocs.focused_bases = 0;     // focused draws keep off the table's low probabilities
   const SoftSegment seg = segment(params);
-  const PoseEstimate once = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate once = StocsEstimator(model_, params.stocs).search(seg);
   EXPECT_EQ(once.base_draws, once.bases_sampled);
   // The segment bleeds onto the table, and some of the paper's bases straddle it and the block.
   ASSERT_LT(once.bases_with_sets, params.stocs.bases);
 
   params.stocs.base_draw_budget = 100;  // up to 10 draws per base
   params.stocs.threads = 1;
-  const PoseEstimate again = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate again = StocsEstimator(model_, params.stocs).search(seg);
   EXPECT_GT(again.base_draws, once.base_draws);
   EXPECT_LE(again.base_draws, 10 * params.stocs.bases);
   EXPECT_GT(again.bases_with_sets, once.bases_with_sets);
   ASSERT_TRUE(again.found);
   params.stocs.threads = 2;  // the draws of a base come from its own stream
-  EXPECT_EQ(StocsEstimator(model_, params.stocs).estimate(seg).pose.matrix(), again.pose.matrix());
+  EXPECT_EQ(StocsEstimator(model_, params.stocs).search(seg).pose.matrix(), again.pose.matrix());
 
   // With as many bases as the budget, every base is drawn once: the paper's loop.
   params.stocs.bases = 100;
   params.stocs.base_draw_budget = 100;
-  const PoseEstimate full = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate full = StocsEstimator(model_, params.stocs).search(seg);
   params.stocs.base_draw_budget = 0;
-  const PoseEstimate paper = StocsEstimator(model_, params.stocs).estimate(seg);
+  const PoseEstimate paper = StocsEstimator(model_, params.stocs).search(seg);
   EXPECT_EQ(full.base_draws, full.bases_sampled);
   EXPECT_EQ(full.pose.matrix(), paper.pose.matrix());
   EXPECT_EQ(full.hypotheses, paper.hypotheses);
@@ -306,7 +306,7 @@ TEST_F(StocsEstimatorTest, OnlyTheFirstBasesAreFocused) {
     StocsParams p = params.stocs;
     p.focused_bases = focused_bases;
     p.base.focus_exponent = exponent;
-    return StocsEstimator(model_, p).estimate(seg);
+    return StocsEstimator(model_, p).search(seg);
   };
   // No focused base and focused bases at exponent 1 are the paper's draws alike.
   const PoseEstimate paper = run(0, 1);
@@ -330,16 +330,16 @@ TEST_F(StocsEstimatorTest, OnlyTheFirstBasesAreFocused) {
 TEST_F(StocsEstimatorTest, TheFramesIntrinsicsMustFitTheCloud) {
   const PipelineParams params;
   const auto focal = static_cast<float>(camera_.fx);
-  const PoseEstimate recovered = estimateObject(cloud_, focal, probability_, model_, params);
+  const PoseEstimate recovered = detectObject(cloud_, focal, probability_, model_, params);
   const PoseEstimate given =
-      estimateObject(cloud_, focal, probability_, model_, params, nullptr, &camera_);
+      detectObject(cloud_, focal, probability_, model_, params, nullptr, &camera_);
   ASSERT_TRUE(given.found);
   EXPECT_LT(addsOf(given), 0.05 * model_.model.diameter);
   EXPECT_LT(addsOf(recovered), 0.05 * model_.model.diameter);
   CameraIntrinsics other = camera_;
   other.width = camera_.width / 2;
   try {
-    estimateObject(cloud_, focal, probability_, model_, params, nullptr, &other);
+    detectObject(cloud_, focal, probability_, model_, params, nullptr, &other);
     ADD_FAILURE() << "intrinsics of another size were accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("camera intrinsics are for 160x240 images"),
@@ -352,10 +352,10 @@ TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   PipelineParams params;
   const cv::Mat nothing(240, 320, CV_32FC1, cv::Scalar(0));
   const PoseEstimate r =
-      estimateObject(cloud_, static_cast<float>(camera_.fx), nothing, model_, params);
+      detectObject(cloud_, static_cast<float>(camera_.fx), nothing, model_, params);
   EXPECT_EQ(r.segment_points, 0u);
   EXPECT_FALSE(r.found);
-  const PoseEstimate nan_cloud = estimateObject(
+  const PoseEstimate nan_cloud = detectObject(
       OrganizedCloud(320, 240), static_cast<float>(camera_.fx), probability_, model_, params);
   EXPECT_FALSE(nan_cloud.found);
 }
@@ -375,8 +375,8 @@ TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {
   model.ppf_map = PpfHashMap::build(model.model, PpfParams{});
   PipelineParams params;
   params.stocs.instances = 3;  // one more than there are: the third, if any, is not a duplicate
-  const PoseEstimate r = estimateObject(cloudFromDepth(depth, camera, 1.0),
-                                        static_cast<float>(camera.fx), probability, model, params);
+  const PoseEstimate r = detectObject(cloudFromDepth(depth, camera, 1.0),
+                                      static_cast<float>(camera.fx), probability, model, params);
   ASSERT_GE(r.instances.size(), 2u);
   EXPECT_TRUE(r.instances[0].pose.isApprox(r.pose));
   std::vector<int> found(truths.size(), 0);

@@ -1,7 +1,7 @@
 #pragma once
-// One RGB-D frame as StoCS reads it, and the loop that estimates the poses of several objects in
-// it: the same loop serves the `stocs` tool (with any PoseMethod), the ROS node and
-// stocs::Estimator.
+// One RGB-D frame as StoCS reads it, and estimateFrame, the entry point that estimates the poses of
+// several objects in it: the one the `stocs` tool (with any PoseMethod), the ROS node, the
+// tracker's detections and stocs::Estimator all call.
 
 #include <functional>
 #include <map>
@@ -60,11 +60,11 @@ struct ObjectResult {
   double cpu_seconds = 0;  ///< CPU time of every thread of the process while it ran
 };
 
-/// Estimates one object; StoCS (estimateObject) unless a caller passes another method.
+/// Estimates one object in a frame: another method than StoCS (PoseMethod).
 using ObjectEstimator = std::function<PoseEstimate(const ObjectInput&)>;
 
-/// StoCS on one object (estimateObject).
-PoseEstimate estimateWithStocs(const ObjectInput& input);
+/// StoCS on one object of a frame (pipeline.h's detectObject on the input's cloud).
+PoseEstimate detectObject(const ObjectInput& input);
 
 /// The frame's intrinsics, else those recovered from its cloud.
 CameraIntrinsics frameCamera(const Frame& frame);
@@ -82,12 +82,16 @@ ObjectInput objectInput(const Frame& frame, CameraIntrinsics&& camera, const Fra
 /// ("object 'cat': ...").
 void forObject(const std::string& name, const std::function<void()>& step);
 
-/// Every object of `objects`, one after the other (each uses every thread), in that order. The
-/// camera is recovered from the cloud once when the frame has none. Throws InputError naming the
-/// object ("object 'cat': ...") when the frame has no probability map for it or the map does not
-/// fit the cloud, and any other InputError of the estimation prefixed the same way.
+/// Every object of `objects` by StoCS (detectObject), one after the other (each uses every
+/// thread), in that order. The camera is recovered from the cloud once when the frame has none.
+/// Throws InputError naming the object ("object 'cat': ...") when the frame has no probability map
+/// for it or the map does not fit the cloud, and any other InputError of the estimation prefixed
+/// the same way.
+std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
+                                        const PipelineParams& params);
+/// The same loop with another method (`estimate`) in place of StoCS.
 std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
                                         const PipelineParams& params,
-                                        const ObjectEstimator& estimate = estimateWithStocs);
+                                        const ObjectEstimator& estimate);
 
 }  // namespace stocs

@@ -1,10 +1,10 @@
 #pragma once
-// One call from sensor data to a pose for one object: soft segment, then StoCS. Shared by the CLI,
-// the benchmark and the ROS node so all of them run exactly the same estimation.
+// The per-object step of a frame's estimation (estimateFrame, frame.h): the object's soft segment,
+// the StoCS search on it (StocsEstimator::search) and each pose judged; and every parameter of it.
 
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/pose_confidence.h"
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/pose_confidence.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"
@@ -36,16 +36,16 @@ struct PipelineParams {
 /// estimating several objects of a frame passes it once known). The estimate's seconds and stages
 /// include the soft segment. Every instance gets its confidence evidence, confidence and verdict
 /// (judgePose). Throws InputError on size or type mismatches.
-PoseEstimate estimateObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
-                            const PreparedModel& model, const PipelineParams& params,
-                            const cv::Mat* boundary_map = nullptr,
-                            const CameraIntrinsics* camera = nullptr);
+PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
+                          const PreparedModel& model, const PipelineParams& params,
+                          const cv::Mat* boundary_map = nullptr,
+                          const CameraIntrinsics* camera = nullptr);
 
-/// estimateObject after its soft segment: StoCS on `segment` (of `cloud` and `probability`), each
+/// detectObject after its soft segment: StoCS on `segment` (of `cloud` and `probability`), each
 /// instance judged (judgeInstance). Leaves the estimate's segment time and `seconds` to the caller.
-PoseEstimate estimateOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
-                               const cv::Mat& probability, const PreparedModel& model,
-                               const PipelineParams& params, const CameraIntrinsics* camera);
+PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
+                             const cv::Mat& probability, const PreparedModel& model,
+                             const PipelineParams& params, const CameraIntrinsics* camera);
 
 /// The confidence evidence of `pose` that needs the frame (its `lcp` must be set; see
 /// ConfidenceEvidence; consensus is left as it is), then its verdict (judgePose). Without

@@ -4,7 +4,7 @@
 //   1. every live track is predicted and refined on the segment of its predicted box
 //      (SegmentFollower) and judged by the calibrated confidence: accepted -> tracked;
 //   2. a track that failed is searched for in the box with StoCS first (local search), then with
-//      full detection (estimateObject); an accepted pose there -> redetected, else -> lost;
+//      full detection (detectObject); an accepted pose there -> redetected, else -> lost;
 //   3. full detection also runs when there is no track, while a track is lost (detection keeps
 //      trying), and every TrackingParams::redetect_every frames, so that a track that slid onto a
 //      look-alike is replaced by a detection the confidence prefers (FrameTracker lets one object

@@ -9,9 +9,9 @@
 #include <optional>
 
 #include "stocs/estimation/frame.h"
-#include "stocs/estimation/icp_refiner.h"
-#include "stocs/estimation/lcp_scorer.h"
 #include "stocs/estimation/pose_proximity.h"
+#include "stocs/estimation/stages/icp_refiner.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 
 namespace stocs {
 
@@ -31,7 +31,7 @@ class SegmentFollower {
 
   /// The pose refined from `predicted`, with its objective, covariance, evidence and verdict.
   InstancePose follow(const Eigen::Isometry3f& predicted) const;
-  /// StoCS on the box's segment alone (estimateOnSegment): the local search after a failure.
+  /// StoCS on the box's segment alone (detectOnSegment): the local search after a failure.
   PoseEstimate search() const;
 
   const SoftSegment& segment() const { return segment_; }

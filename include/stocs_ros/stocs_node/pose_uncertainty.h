@@ -1,14 +1,14 @@
 #pragma once
 // A pose's covariance as published: checked (never a NaN or a covariance that is not positive
-// definite on the wire: those fall back to the prior of stocs/estimation/pose_covariance.h), and
-// shown in rviz as the ellipsoid holding the object's origin with 90% probability.
+// definite on the wire: those fall back to the prior of stocs/estimation/stages/pose_covariance.h),
+// and shown in rviz as the ellipsoid holding the object's origin with 90% probability.
 
 #include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/Marker.h>
 #include <Eigen/Geometry>
 #include <boost/array.hpp>
 
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/model/object_model.h"
 
 namespace stocs_ros {

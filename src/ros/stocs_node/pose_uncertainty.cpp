@@ -3,7 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 
 namespace stocs_ros {
 namespace {

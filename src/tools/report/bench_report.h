@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "child_process.h"
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 #include "stocs/eval/dataset_evaluation.h"
 
 namespace stocs::tools {

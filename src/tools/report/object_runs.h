@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 #include "stocs/eval/dataset_evaluation.h"
 
 namespace stocs::tools {

@@ -1,4 +1,4 @@
-#include "stocs/estimation/boundary_regions.h"
+#include "stocs/estimation/stages/boundary_regions.h"
 
 #include <algorithm>
 #include <cstdint>

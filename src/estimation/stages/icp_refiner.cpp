@@ -1,4 +1,4 @@
-#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 
 #include <fmt/format.h>
 

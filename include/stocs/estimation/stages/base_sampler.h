@@ -24,7 +24,7 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/geometry/point_grid.h"
 #include "stocs/model/ppf_hash_map.h"
 #include "stocs/util/param_set.h"

@@ -1,4 +1,4 @@
-#include "stocs/estimation/base_sampler.h"
+#include "stocs/estimation/stages/base_sampler.h"
 
 #include <fmt/format.h>
 

@@ -21,7 +21,7 @@ namespace stocs {
 
 struct FreeSpaceParams {
   /// Rank the refined candidates by their objective times the share of their camera-facing
-  /// surface that is not in free space (see StocsEstimator::estimate).
+  /// surface that is not in free space (see StocsEstimator::search).
   bool enabled = true;
   /// A model sample is in free space when the measured surface at its pixel lies more than this
   /// far behind it (metres): depth noise and model error stay below it.

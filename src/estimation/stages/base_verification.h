@@ -5,15 +5,13 @@
 
 #include <Eigen/Geometry>
 #include <array>
-#include <chrono>
 #include <limits>
-#include <optional>
 #include <vector>
 
-#include "stocs/estimation/base_sampler.h"
-#include "stocs/estimation/congruent_set_matcher.h"
-#include "stocs/estimation/lcp_scorer.h"
 #include "stocs/estimation/pose_proximity.h"
+#include "stocs/estimation/stages/base_sampler.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/util/random.h"
 
@@ -42,8 +40,6 @@ struct BaseStages {
   /// Base scores a thread keeps for its pruning bound: those that can still be among the ones
   /// refined (or compared by the consensus stop).
   size_t keep;
-  /// Bases that start after it are not run (StocsParams::time_budget).
-  std::optional<std::chrono::steady_clock::time_point> deadline;
 };
 
 /// Runs bases for one thread, with the thread's scratch memory and its best base scores so far.

@@ -1,4 +1,4 @@
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "stocs/estimation/stocs_estimator.h"
+#include "stocs/estimation/pose_estimate.h"
 
 namespace stocs {
 namespace {

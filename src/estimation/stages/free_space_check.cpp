@@ -1,4 +1,4 @@
-#include "stocs/estimation/free_space_check.h"
+#include "stocs/estimation/stages/free_space_check.h"
 
 #include <fmt/format.h>
 

@@ -1,18 +1,17 @@
 #include "base_verification.h"
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
+#include <optional>
 
+#include "elapsed.h"
 #include "stocs/geometry/rigid_fit.h"
 
 namespace stocs {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 /// The rounds in which the hypotheses of a base are scored on their heads: after each share of the
 /// head, the best `width` x finished_per_base of them go on (after the last, to be finished). An
@@ -27,7 +26,6 @@ constexpr HeadRound kHeadRounds[] = {{0.25f, 8}, {0.5f, 4}, {1.0f, 1}};
 }  // namespace
 
 void BaseVerifier::run(int b, BaseOutcome& out) {
-  if (s_.deadline && Clock::now() > *s_.deadline) return;
   out.tried = true;
   Rng rng(streamSeed(s_.params.seed, static_cast<uint64_t>(b)));
   // A base with nothing to verify is drawn again from its own stream (base_draw_budget).

@@ -1,4 +1,4 @@
-#include "stocs/estimation/congruent_set_matcher.h"
+#include "stocs/estimation/stages/congruent_set_matcher.h"
 
 #include <fmt/format.h>
 

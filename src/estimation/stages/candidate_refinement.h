@@ -6,9 +6,9 @@
 #include <optional>
 #include <vector>
 
-#include "stocs/estimation/free_space_check.h"
-#include "stocs/estimation/icp_refiner.h"
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/icp_refiner.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/estimation/stocs_estimator.h"
 #include "stocs/model/near_symmetries.h"
 

@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 #include <limits>
 
-#include "stocs/estimation/region_grids.h"
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/region_grids.h"
+#include "stocs/estimation/stages/soft_segment.h"
 #include "stocs/model/object_model.h"
 #include "stocs/util/param_set.h"
 

@@ -5,8 +5,8 @@
 
 #include <Eigen/Geometry>
 
-#include "stocs/estimation/lcp_scorer.h"
-#include "stocs/estimation/region_grids.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
+#include "stocs/estimation/stages/region_grids.h"
 #include "stocs/util/param_set.h"
 
 namespace stocs {

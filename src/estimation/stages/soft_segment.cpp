@@ -1,4 +1,4 @@
-#include "stocs/estimation/soft_segment.h"
+#include "stocs/estimation/stages/soft_segment.h"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
-#include "stocs/estimation/boundary_regions.h"
+#include "stocs/estimation/stages/boundary_regions.h"
 #include "stocs/geometry/voxel_key.h"
 #include "stocs/util/error.h"
 

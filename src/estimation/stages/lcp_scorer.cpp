@@ -1,4 +1,4 @@
-#include "stocs/estimation/lcp_scorer.h"
+#include "stocs/estimation/stages/lcp_scorer.h"
 
 #include <fmt/format.h>
 

@@ -29,7 +29,7 @@
 
 #include <vector>
 
-#include "stocs/estimation/icp_refiner.h"
+#include "stocs/estimation/stages/icp_refiner.h"
 #include "stocs/model/near_symmetries.h"
 #include "stocs/model/object_model.h"
 

@@ -4,7 +4,7 @@
 #include <numeric>
 
 #include "stocs/estimation/instance_separation.h"
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 
 namespace stocs {
 namespace {

@@ -1,4 +1,4 @@
-#include "stocs/estimation/pose_covariance.h"
+#include "stocs/estimation/stages/pose_covariance.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

@@ -1,9 +1,9 @@
-#include "stocs/estimation/base_consensus.h"
+#include "stocs/estimation/scheduling/base_consensus.h"
 
 #include <algorithm>
 #include <utility>
 
-#include "stocs/estimation/pose_confidence.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 
 namespace stocs {
 

@@ -1,4 +1,4 @@
-#include "stocs/estimation/region_grids.h"
+#include "stocs/estimation/stages/region_grids.h"
 
 namespace stocs {
 
