@@ -45,22 +45,34 @@ target_link_libraries(stocs_ros PUBLIC stocs_core ${catkin_LIBRARIES}
   PRIVATE yaml-cpp opencv_imgcodecs)
 add_dependencies(stocs_ros ${PROJECT_NAME}_generate_messages_cpp ${catkin_EXPORTED_TARGETS})
 
-# stocs_ros_program(FOLDER EXECUTABLE): the static library stocs_ros_FOLDER of src/ros/FOLDER and
-# the executable of its main.
-function(stocs_ros_program folder executable)
+# stocs_ros_program_library(FOLDER [deps...]): the static library stocs_ros_FOLDER of src/ros/FOLDER
+# (without its main and nodelet shell), on stocs_ros.
+function(stocs_ros_program_library folder)
   stocs_ros_sources(sources ${folder})
   add_library(stocs_ros_${folder} STATIC ${sources})
   set_target_properties(stocs_ros_${folder} PROPERTIES POSITION_INDEPENDENT_CODE ON)
   target_link_libraries(stocs_ros_${folder} PUBLIC stocs_ros ${ARGN})
-  add_executable(${executable} ${PROJECT_SOURCE_DIR}/src/ros/${folder}/${executable}_main.cpp)
-  target_link_libraries(${executable} PRIVATE stocs_ros_${folder})
 endfunction()
-stocs_ros_program(stocs_node stocs_node)
-stocs_ros_program(scene_publisher scene_publisher)
-stocs_ros_program(segmentation_node segmentation_node)
-stocs_ros_program(demo_recorder demo_recorder)
-stocs_ros_program(config_reference config_reference stocs_ros_segmentation_node
-  stocs_ros_scene_publisher stocs_ros_demo_recorder)
+stocs_ros_program_library(stocs_node)
+stocs_ros_program_library(scene_publisher)
+stocs_ros_program_library(segmentation_node)
+stocs_ros_program_library(demo_recorder)
+stocs_ros_program_library(config_reference stocs_ros_segmentation_node stocs_ros_scene_publisher
+  stocs_ros_demo_recorder)
+
+# The executables, each its folder's main on its folder's library (spelled out for catkin_lint).
+add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node/stocs_node_main.cpp)
+target_link_libraries(stocs_node PRIVATE stocs_ros_stocs_node)
+add_executable(scene_publisher ${PROJECT_SOURCE_DIR}/src/ros/scene_publisher/scene_publisher_main.cpp)
+target_link_libraries(scene_publisher PRIVATE stocs_ros_scene_publisher)
+add_executable(segmentation_node
+  ${PROJECT_SOURCE_DIR}/src/ros/segmentation_node/segmentation_node_main.cpp)
+target_link_libraries(segmentation_node PRIVATE stocs_ros_segmentation_node)
+add_executable(demo_recorder ${PROJECT_SOURCE_DIR}/src/ros/demo_recorder/demo_recorder_main.cpp)
+target_link_libraries(demo_recorder PRIVATE stocs_ros_demo_recorder)
+add_executable(config_reference
+  ${PROJECT_SOURCE_DIR}/src/ros/config_reference/config_reference_main.cpp)
+target_link_libraries(config_reference PRIVATE stocs_ros_config_reference)
 
 # One plugin library holds the three nodelets (nodelet_plugins.xml).
 file(GLOB STOCS_ROS_NODELET_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/ros/*/*_nodelet.cpp)
