@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "test_support.h"
 
@@ -164,6 +167,32 @@ TEST(BadConfig, SegmentationNodeExitsWithAMessageNamingTheProblem) {
     EXPECT_EQ(run(SEGMENTATION_NODE_PATH, c.args, output, name), 1) << c.args << "\n" << output;
     EXPECT_NE(output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in:\n"
                                                           << output;
+  }
+}
+
+TEST(BadConfig, SegmentationNodeWarnsThatThePackagesNetworkKnowsOnlySixMeshes) {
+  // The package's network by its path, and the same file copied elsewhere (someone's own network):
+  // only the first is warned of. Each runs until `timeout` ends it (exit code 124).
+  const std::filesystem::path own = stocs::test::scratchDir("own_network") / "mine.onnx";
+  std::filesystem::copy_file(SEGMENTER_MODEL, own,
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::string warning =
+      "is the package's own network, trained on generated scenes of the "
+      "project's 6 meshes (box, long_box, cylinder, mug, bowl, block) only";
+  for (const std::string& model : {std::string(SEGMENTER_MODEL), own.string()}) {
+    const std::string name = nextNodeName();
+    ros::param::set(
+        "/" + name + "/channels",
+        std::vector<std::string>{"-", "box", "long_box", "cylinder", "mug", "bowl", "block"});
+    std::string output;
+    EXPECT_EQ(stocs::test::runCommand("timeout 10 " + std::string(SEGMENTATION_NODE_PATH) +
+                                          " __name:=" + name + " _model:=" + model,
+                                      output),
+              124)
+        << output;
+    ASSERT_NE(output.find("waiting for subscribers"), std::string::npos) << output;
+    EXPECT_EQ(output.find(warning) != std::string::npos, model == SEGMENTER_MODEL) << model << ":\n"
+                                                                                   << output;
   }
 }
 
