@@ -196,6 +196,27 @@ TEST(BadConfig, SegmentationNodeWarnsThatThePackagesNetworkKnowsOnlySixMeshes) {
   }
 }
 
+TEST(BadConfig, ScenePublisherWarnsOfSimulatedTimeWithoutAClock) {
+  // What a bag launch's use_sim_time:=true leaves on a long-running master; reset for the tests
+  // after this one (this process read it at its start).
+  ros::param::set("/use_sim_time", true);
+  const std::filesystem::path dir = stocs::test::scratchDir("publisher_sim_time");
+  const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
+  stocs::test::writeSyntheticBopDataset(dir / "data");
+  std::string output;
+  const int status = stocs::test::runCommand(
+      "timeout 12 " + std::string(SCENE_PUBLISHER_PATH) + " __name:=" + nextNodeName() +
+          " _config:=" + config.string() + " _dataset:=" + (dir / "data").string(),
+      output);
+  ros::param::set("/use_sim_time", false);
+  EXPECT_EQ(status, 124) << output;
+  EXPECT_NE(output.find("scene_publisher: /use_sim_time is true but no /clock message has "
+                        "arrived in 5 s"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("rosparam set /use_sim_time false"), std::string::npos) << output;
+}
+
 TEST(BadConfig, ScenePublisherWarnsOnceOfAFrameWithoutProbabilityMaps) {
   const std::filesystem::path dir = stocs::test::scratchDir("publisher");
   const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
