@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 
+#include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "test_support.h"
 
@@ -165,6 +168,53 @@ TEST(BadConfig, SegmentationNodeExitsWithAMessageNamingTheProblem) {
     EXPECT_NE(output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in:\n"
                                                           << output;
   }
+}
+
+TEST(BadConfig, SegmentationNodeWarnsThatThePackagesNetworkKnowsOnlySixMeshes) {
+  // The package's network by its path, and the same file copied elsewhere (someone's own network):
+  // only the first is warned of. Each runs until `timeout` ends it (exit code 124).
+  const std::filesystem::path own = stocs::test::scratchDir("own_network") / "mine.onnx";
+  std::filesystem::copy_file(SEGMENTER_MODEL, own,
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::string warning =
+      "is the package's own network, trained on generated scenes of the "
+      "project's 6 meshes (box, long_box, cylinder, mug, bowl, block) only";
+  for (const std::string& model : {std::string(SEGMENTER_MODEL), own.string()}) {
+    const std::string name = nextNodeName();
+    ros::param::set(
+        "/" + name + "/channels",
+        std::vector<std::string>{"-", "box", "long_box", "cylinder", "mug", "bowl", "block"});
+    std::string output;
+    EXPECT_EQ(stocs::test::runCommand("timeout 10 " + std::string(SEGMENTATION_NODE_PATH) +
+                                          " __name:=" + name + " _model:=" + model,
+                                      output),
+              124)
+        << output;
+    ASSERT_NE(output.find("waiting for subscribers"), std::string::npos) << output;
+    EXPECT_EQ(output.find(warning) != std::string::npos, model == SEGMENTER_MODEL) << model << ":\n"
+                                                                                   << output;
+  }
+}
+
+TEST(BadConfig, ScenePublisherWarnsOfSimulatedTimeWithoutAClock) {
+  // What a bag launch's use_sim_time:=true leaves on a long-running master; reset for the tests
+  // after this one (this process read it at its start).
+  ros::param::set("/use_sim_time", true);
+  const std::filesystem::path dir = stocs::test::scratchDir("publisher_sim_time");
+  const std::filesystem::path config = writeConfig(dir, "config.yaml", kObject);
+  stocs::test::writeSyntheticBopDataset(dir / "data");
+  std::string output;
+  const int status = stocs::test::runCommand(
+      "timeout 12 " + std::string(SCENE_PUBLISHER_PATH) + " __name:=" + nextNodeName() +
+          " _config:=" + config.string() + " _dataset:=" + (dir / "data").string(),
+      output);
+  ros::param::set("/use_sim_time", false);
+  EXPECT_EQ(status, 124) << output;
+  EXPECT_NE(output.find("scene_publisher: /use_sim_time is true but no /clock message has "
+                        "arrived in 5 s"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("rosparam set /use_sim_time false"), std::string::npos) << output;
 }
 
 TEST(BadConfig, ScenePublisherWarnsOnceOfAFrameWithoutProbabilityMaps) {

@@ -26,6 +26,7 @@
 #include "stocs/io/bop_dataset.h"
 #include "stocs/sim/probability_source.h"
 #include "stocs/sim/segmentation_input_source.h"
+#include "stocs_ros/common/clock_watch.h"
 #include "stocs_ros/common/node_config.h"
 #include "stocs_ros/scene_publisher/bop_frame.h"
 #include "stocs_ros/scene_publisher/ground_truth_markers.h"
@@ -96,6 +97,8 @@ class ScenePublisher {
   ros::Publisher truth_markers_;
   GroundTruthMarkers truth_marker_builder_{config_};
   ros::Timer timer_;
+  /// The timer above waits for ROS time: a warning when /use_sim_time is on and no /clock comes.
+  ClockWatch clock_watch_{pnh_, "scene_publisher"};
   /// The frame being loaded; last, so that it is waited for before anything it uses goes.
   /// ~cache: decoded frames by index into frames_ (null: not read yet); written by the loading
   /// thread, one load at a time, and read before the next load starts.

@@ -14,7 +14,7 @@ struct ScenePublisherParams {
   std::string config;   ///< required
   std::string split = "test";
   std::vector<int> scenes, images;  ///< empty: all
-  double rate = 0;                  ///< Hz; 0: the played sequences' own, else 1
+  double rate = 0;                  ///< Hz; 0: the played sequences' own, else 2 / max_gap
   bool loop = true;
   bool cache = false;
   bool preload = false;

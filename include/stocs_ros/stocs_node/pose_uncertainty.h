@@ -23,10 +23,12 @@ boost::array<double, 36> covarianceMsg(const stocs::PoseCovariance& covariance);
 
 /// A SPHERE at the pose's origin, its axes the eigenvectors of the position covariance (the
 /// top-left 3x3 block) and its diameters those of the 90% ellipsoid (2 sqrt(chi2_3(0.9) lambda)),
-/// in `colour` made translucent. Namespace, id and header are the caller's. Expects a publishable
-/// covariance.
+/// in `colour` made translucent; a diameter below `minimum_diameter` is drawn at that size (so
+/// that it shows around the object). Namespace, id and header are the caller's. Expects a
+/// publishable covariance.
 visualization_msgs::Marker uncertaintyMarker(const Eigen::Isometry3f& pose,
                                              const stocs::PoseCovariance& covariance,
-                                             std_msgs::ColorRGBA colour);
+                                             std_msgs::ColorRGBA colour,
+                                             double minimum_diameter = 0);
 
 }  // namespace stocs_ros

@@ -51,15 +51,19 @@ geometry_msgs::PoseWithCovarianceStamped toPoseWithCovariance(const FoundPose& f
 geometry_msgs::PoseArray toPoseArray(const FrameResult& result);
 
 /// Per found pose, its body (bodyMarker: the config's mesh or else the model samples) in the
-/// object's colour, and a white text label "instanceName score" above the object
-/// (labelPositionAbove); namespace = object name, ids 2k (body) and 2k + 1 (label) for instance k;
-/// and its uncertainty (uncertaintyMarker, namespace kUncertaintyNamespace, id
-/// kUncertaintyIdsPerObject x object index + k). Rejected poses get none.
+/// object's colour, and a white text label "instanceName confidence" (two decimals) above the
+/// object (labelPositionAbove); namespace = object name, ids 2k (body) and 2k + 1 (label) for
+/// instance k; and its uncertainty (uncertaintyMarker, at least kUncertaintyMinimumShare of the
+/// model's diameter across, namespace kUncertaintyNamespace, id kUncertaintyIdsPerObject x object
+/// index + k). Rejected poses get none.
 /// Markers in `shown` (those of the previous call) that are not shown now get DELETE markers;
 /// `shown` is updated.
 inline const char* const kUncertaintyNamespace = "uncertainty";
 /// Above the most instances per object (StocsParams::instances).
 constexpr int kUncertaintyIdsPerObject = 1000;
+/// The smallest diameter of the uncertainty ellipsoid, as a share of the object's diameter: one
+/// object across, so that it shows around the opaque body it would otherwise hide in.
+constexpr double kUncertaintyMinimumShare = 1.0;
 
 visualization_msgs::MarkerArray toMarkers(const FrameResult& result, const EstimationSetup& setup,
                                           std::set<MarkerKey>& shown);

@@ -67,10 +67,20 @@ std::unique_ptr<stocs::ProbabilitySource> probabilitySource(std::string spec,
   }
 }
 
+/// Where a dataset has no rate of its own: two frames per `tracking.max_gap` when the node tracks
+/// (4 Hz for the default 0.5 s), so that a frame a little late still continues the tracks; at
+/// 1 Hz every gap ended them and the node's default, tracking, never engaged (issue 42). At least
+/// 1 Hz, at most 100.
+double fallbackRate(const stocs::TrackingParams& tracking) {
+  if (!tracking.enabled) return 1.0;
+  return std::clamp(2.0 / tracking.max_gap, 1.0, 100.0);
+}
+
 /// `rate` (~rate), or where it is 0 (the default) the rate of the played sequences (their
-/// scene_events.json), else 1 Hz.
-double playbackRate(double rate, const stocs::BopDataset& dataset, const std::vector<int>& scenes) {
-  if (rate == 0) rate = stocs::sequenceRate(dataset, scenes).value_or(1.0);
+/// scene_events.json), else fallbackRate.
+double playbackRate(double rate, const stocs::BopDataset& dataset, const std::vector<int>& scenes,
+                    const stocs::TrackingParams& tracking) {
+  if (rate == 0) rate = stocs::sequenceRate(dataset, scenes).value_or(fallbackRate(tracking));
   if (!(rate > 0 && rate <= 100)) {
     throw InputError(fmt::format("parameter rate {} Hz is outside (0, 100]", rate));
   }
@@ -121,7 +131,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
                                  dataset_.root().string()));
   }
   for (const ObjectConfig& o : config_.objects) object_ids_.push_back(o.id);
-  const double rate = playbackRate(params_.rate, dataset_, scenes);
+  const double rate = playbackRate(params_.rate, dataset_, scenes, config_.tracking);
   cache_frames_ = params_.cache || params_.preload;
   cache_.resize(frames_.size());
   if (params_.preload) preload();

@@ -14,7 +14,8 @@ const stocs::ParamSet<ScenePublisherParams>& ScenePublisherParams::schema() {
           .add(&P::scenes, "scenes", "", std::nullopt, "scene ids to play ([]: all)")
           .add(&P::images, "images", "", std::nullopt, "image ids to play ([]: all)")
           .add(&P::rate, "rate", "Hz", ParamRange::aboveUpTo(0, 100).orAlso(0),
-               "frames per second; 0: the played sequences' own rate (scene_events.json), else 1")
+               "frames per second; 0: the played sequences' own rate (scene_events.json), else "
+               "2 / tracking.max_gap of the config (4 by default; 1 without tracking)")
           .add(&P::loop, "loop", "start again after the last frame")
           .add(&P::cache, "cache", "keep every decoded frame in memory for later passes")
           .add(&P::preload, "preload", "decode every frame before the first is published (cache)")

@@ -6,6 +6,7 @@
 
 #include <boost/make_shared.hpp>
 #include <chrono>
+#include <filesystem>
 #include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
@@ -68,6 +69,17 @@ sensor_msgs::ImagePtr mapsMessage(const std_msgs::Header& header, const cv::Mat&
   return msg;
 }
 
+/// Whether `model` is the package's own network (models/segmenter.onnx, however it is named).
+bool isPackageNetwork(const std::string& model) {
+  std::error_code error;
+  try {
+    return std::filesystem::equivalent(
+        model, resolveResourcePath("package://stocs_ros/models/segmenter.onnx", {}), error);
+  } catch (const InputError&) {  // the package is not on ROS_PACKAGE_PATH: not its network
+    return false;
+  }
+}
+
 }  // namespace
 
 SegmentationNode::SegmentationNode(ros::NodeHandle pnh)
@@ -90,6 +102,17 @@ SegmentationNode::SegmentationNode(ros::NodeHandle pnh)
       pnh_.createTimer(ros::Duration(1.0), &SegmentationNode::publishStatistics, this);
   ROS_INFO("segmentation: %s, %zu objects; waiting for subscribers",
            network_.params().model.c_str(), objects_.size());
+  // Issue 42: on real images the demo's network marks unrelated objects as its six, silently.
+  if (isPackageNetwork(network_.params().model)) {
+    std::string names;
+    for (const auto& object : objects_) names += (names.empty() ? "" : ", ") + object.first;
+    ROS_WARN(
+        "segmentation: %s is the package's own network, trained on generated scenes of the "
+        "project's %zu meshes (%s) only: it knows nothing else, and on real images it marks "
+        "unrelated objects as these. For your objects, train a network of your own and set ~model "
+        "and ~channels (see models/README.md and docs/ros.md, \"Segmentation node\")",
+        network_.params().model.c_str(), objects_.size(), names.c_str());
+  }
 }
 
 void SegmentationNode::updateSubscription() {

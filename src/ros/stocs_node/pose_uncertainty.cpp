@@ -36,13 +36,14 @@ boost::array<double, 36> covarianceMsg(const stocs::PoseCovariance& covariance) 
 
 visualization_msgs::Marker uncertaintyMarker(const Eigen::Isometry3f& pose,
                                              const stocs::PoseCovariance& covariance,
-                                             std_msgs::ColorRGBA colour) {
+                                             std_msgs::ColorRGBA colour, double minimum_diameter) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance.topLeftCorner<3, 3>());
   Eigen::Matrix3d axes = eigen.eigenvectors();
   if (axes.determinant() < 0) axes.col(2) = -axes.col(2);  // a rotation, not a reflection
   const Eigen::Quaterniond orientation(axes);
   const Eigen::Vector3d diameters =
-      2 * (kChiSquare3At90 * eigen.eigenvalues().cwiseMax(0)).cwiseSqrt();
+      (2 * (kChiSquare3At90 * eigen.eigenvalues().cwiseMax(0)).cwiseSqrt())
+          .cwiseMax(minimum_diameter);
   visualization_msgs::Marker m;
   m.type = visualization_msgs::Marker::SPHERE;
   m.action = visualization_msgs::Marker::ADD;

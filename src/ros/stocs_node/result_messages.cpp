@@ -52,7 +52,9 @@ visualization_msgs::Marker labelMarker(const FoundPose& f, const EstimationSetup
   m.id = static_cast<int>(2 * f.instance + 1);
   m.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
   m.action = visualization_msgs::Marker::ADD;
-  m.text = fmt::format("{} {:.3f}", instanceName(m.ns, f.instance), f.estimate.score);
+  // The confidence, not the score: the score ranks one frame's hypotheses and means nothing to a
+  // reader (issue 42: "cat 0.088" for a pose of confidence 0.54).
+  m.text = fmt::format("{} {:.2f}", instanceName(m.ns, f.instance), f.estimate.confidence);
   m.pose.orientation.w = 1;
   m.pose.position = tf2::toMsg(labelPositionAbove(setup.models[object]->model,
                                                   Eigen::Isometry3d(f.estimate.pose.cast<double>()),
@@ -70,8 +72,11 @@ stocs::PoseCovariance covarianceOf(const FoundPose& f, const EstimationSetup& se
 visualization_msgs::Marker objectUncertaintyMarker(const FoundPose& f,
                                                    const EstimationSetup& setup) {
   const size_t object = f.outcome->object;
+  // At least the object's size across: a 90% ellipsoid of a few millimetres hides inside the
+  // opaque body.
   visualization_msgs::Marker m =
-      uncertaintyMarker(f.estimate.pose, covarianceOf(f, setup), colour(object));
+      uncertaintyMarker(f.estimate.pose, covarianceOf(f, setup), colour(object),
+                        kUncertaintyMinimumShare * setup.models[object]->model.diameter);
   m.ns = kUncertaintyNamespace;
   m.id = kUncertaintyIdsPerObject * static_cast<int>(object) + static_cast<int>(f.instance);
   return m;

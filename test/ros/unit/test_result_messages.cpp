@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <vector>
 
 #include "stocs_ros/stocs_node/pose_uncertainty.h"
 #include "stocs_ros/stocs_node/result_messages.h"
@@ -77,7 +78,7 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
   EXPECT_LE(first.markers[0].points.size(), 2000u);
   EXPECT_GT(first.markers[0].points.size(), 1000u);
   EXPECT_EQ(first.markers[1].type, visualization_msgs::Marker::TEXT_VIEW_FACING);
-  EXPECT_EQ(first.markers[1].text, "box 0.250");
+  EXPECT_EQ(first.markers[1].text.rfind("box ", 0), 0u) << first.markers[1].text;
   EXPECT_EQ(first.markers[2].type, visualization_msgs::Marker::MESH_RESOURCE);
   EXPECT_EQ(first.markers[2].mesh_resource, "package://stocs_ros/meshes/can.stl");
   EXPECT_FLOAT_EQ(first.markers[2].scale.x, 0.001f);
@@ -185,6 +186,7 @@ ObjectOutcome withInstances(size_t object, int count) {
     stocs::InstancePose p;
     p.pose.translation() = Eigen::Vector3f(0.1f * (k + 1), 0, 1);
     p.score = 0.5f - 0.1f * k;
+    p.confidence = 0.9f - 0.1f * k;
     o.estimate.instances.push_back(p);
   }
   return o;
@@ -213,7 +215,8 @@ TEST(ResultMessages, EveryInstanceIsReportedBestFirst) {
   ASSERT_EQ(markers.markers.size(), 12u);
   EXPECT_EQ(markers.markers[4].ns, "box");
   EXPECT_EQ(markers.markers[4].id, 4);
-  EXPECT_EQ(markers.markers[5].text, "box_2 0.300");
+  // The label shows the confidence (0.7), not the score (0.3).
+  EXPECT_EQ(markers.markers[5].text, "box_2 0.70");
 
   // Fewer instances in the next frame: the markers of the lost ones are deleted.
   result.objects[0].estimate.instances.resize(1);
@@ -275,8 +278,19 @@ TEST(ResultMessages, RejectedPosesAreListedApartAndNeverPublished) {
   EXPECT_EQ(shown, (std::set<MarkerKey>{{"box", 0}, {"box", 1}, {"uncertainty", 0}}));
 }
 
+/// `setup` with every model's diameter `diameter` metres.
+EstimationSetup withDiameter(EstimationSetup setup, float diameter) {
+  for (std::shared_ptr<const stocs::PreparedModel>& shared : setup.models) {
+    auto m = std::make_shared<stocs::PreparedModel>(*shared);
+    m->model.diameter = diameter;
+    shared = m;
+  }
+  return setup;
+}
+
 TEST(ResultMessages, TheCovarianceIsCopiedRowByRowInREP103Order) {
-  const EstimationSetup setup = twoObjects();
+  // Objects smaller (10 cm) than the ellipsoid (16-30 cm across), which is then drawn to scale.
+  const EstimationSetup setup = withDiameter(twoObjects(), 0.1f);
   FrameResult result;
   result.header.frame_id = "camera";
   result.header.stamp = ros::Time(3);
@@ -308,6 +322,27 @@ TEST(ResultMessages, TheCovarianceIsCopiedRowByRowInREP103Order) {
   EXPECT_NEAR(std::abs((q * Eigen::Vector3d::UnitZ()).dot(eigen.eigenvectors().col(2))), 1, 1e-6);
   EXPECT_FLOAT_EQ(ellipsoid.pose.position.x, 0.1f);
   EXPECT_LT(ellipsoid.color.a, 1.0f);
+}
+
+TEST(ResultMessages, AnEllipsoidSmallerThanTheObjectIsDrawnAsLargeAsTheObject) {
+  const EstimationSetup setup = withDiameter(twoObjects(), 0.15f);
+  FrameResult result;
+  result.objects = {withInstances(0, 1)};
+  // Standard deviations 1 mm and 2 mm (90% diameters 5 and 10 mm, hidden in a 15 cm object), and
+  // 10 cm along the third axis (90% diameter 0.5 m, larger than the object).
+  stocs::PoseCovariance c = stocs::PoseCovariance::Identity() * 1e-2;
+  c(0, 0) = 1e-6;
+  c(1, 1) = 4e-6;
+  c(2, 2) = 1e-2;
+  result.objects[0].estimate.instances[0].covariance = c;
+  std::set<MarkerKey> shown;
+  const visualization_msgs::Marker& ellipsoid = toMarkers(result, setup, shown).markers.back();
+  ASSERT_EQ(ellipsoid.ns, "uncertainty");
+  std::vector<double> diameters = {ellipsoid.scale.x, ellipsoid.scale.y, ellipsoid.scale.z};
+  std::sort(diameters.begin(), diameters.end());
+  EXPECT_NEAR(diameters[0], 0.15, 1e-6);
+  EXPECT_NEAR(diameters[1], 0.15, 1e-6);
+  EXPECT_NEAR(diameters[2], 2 * std::sqrt(6.251388631 * 1e-2), 1e-6);
 }
 
 TEST(ResultMessages, ACovarianceWithNaNIsNeverPublished) {
