@@ -12,6 +12,7 @@
 
 #include <memory>
 
+#include "stocs_ros/common/clock_watch.h"
 #include "stocs_ros/stocs_node/frame_inputs.h"
 #include "stocs_ros/stocs_node/frame_processor.h"
 #include "stocs_ros/stocs_node/node_services.h"
@@ -39,6 +40,7 @@ class StocsNode {
   void publishStatistics();
 
   ros::NodeHandle pnh_;
+  ClockWatch clock_watch_{pnh_, "stocs"};  // says so when /use_sim_time waits on no /clock
   SetupStore setups_;
   FrameInputs inputs_;
   NodeStatistics statistics_;

@@ -94,7 +94,7 @@ void FrameInputs::subscribeTo(size_t input, int queue_size) {
 
 void FrameInputs::onMessage(size_t input, const ros::Time& stamp, Message message) {
   statistics_->received(input);
-  std::optional<MatchedFrame> matched;
+  MatchedFrame matched;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     std::vector<DroppedMessage> dropped;
@@ -107,10 +107,10 @@ void FrameInputs::onMessage(size_t input, const ros::Time& stamp, Message messag
     statistics_->matched();
     const std::optional<ros::Time> previous =
         latest_ ? std::optional<ros::Time>(latest_->stamp) : std::nullopt;
-    latest_ = MatchedFrame{toFrame(match->messages), match->stamp, sync_->timeJumps(), previous};
-    matched = latest_;
+    matched = MatchedFrame{toFrame(match->messages), match->stamp, sync_->timeJumps(), previous};
+    latest_ = matched;
   }
-  on_frame_(std::move(*matched));
+  on_frame_(std::move(matched));
 }
 
 void FrameInputs::logDropped(const std::vector<DroppedMessage>& dropped) const {
