@@ -58,7 +58,7 @@ stocs_ros_program_library(scene_publisher)
 stocs_ros_program_library(segmentation_node)
 stocs_ros_program_library(demo_recorder)
 stocs_ros_program_library(config_reference stocs_ros_segmentation_node stocs_ros_scene_publisher
-  stocs_ros_demo_recorder)
+  stocs_ros_demo_recorder stocs_ros_stocs_node)
 
 # The executables, each its folder's main on its folder's library (spelled out for catkin_lint).
 add_executable(stocs_node ${PROJECT_SOURCE_DIR}/src/ros/stocs_node/stocs_node_main.cpp)

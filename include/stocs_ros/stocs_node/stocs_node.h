@@ -19,6 +19,7 @@
 #include "stocs_ros/stocs_node/node_statistics.h"
 #include "stocs_ros/stocs_node/runtime_settings.h"
 #include "stocs_ros/stocs_node/setup_store.h"
+#include "stocs_ros/stocs_node/stocs_node_params.h"
 
 namespace stocs_ros {
 
@@ -41,6 +42,7 @@ class StocsNode {
 
   ros::NodeHandle pnh_;
   ClockWatch clock_watch_{pnh_, "stocs"};  // says so when /use_sim_time waits on no /clock
+  StocsNodeParams params_;
   SetupStore setups_;
   FrameInputs inputs_;
   NodeStatistics statistics_;

@@ -10,6 +10,7 @@
 #include "stocs_ros/demo_recorder/demo_recorder_params.h"
 #include "stocs_ros/scene_publisher/scene_publisher_params.h"
 #include "stocs_ros/segmentation_node/segmentation_output_params.h"
+#include "stocs_ros/stocs_node/stocs_node_params.h"
 
 namespace stocs_ros {
 namespace {
@@ -93,25 +94,37 @@ std::string parametersMarkdown() {
                                  }),
                   node_keys.end());
   return fmt::format(
-      "{}## Inputs, outputs, cache\n\n{}\n## Estimation\n\nUnder `estimation:` in the file; "
-      "the last column is the option of the `stocs` tool.\n\n{}\n## Tracking\n\nUnder "
-      "`tracking:` in the file ([docs/ros.md](ros.md#tracking)); the last column is the option of "
-      "`stocs estimate`, which detects every image unless given `--track`.\n\n{}\n## Segmentation "
-      "network\n\nPrivate parameters of "
-      "`segmentation_node` ([docs/ros.md](ros.md#segmentation-node)); config/segmenter.yaml sets "
-      "them for the package's own network.\n\n{}\n## Scene publisher\n\nPrivate parameters of "
-      "`scene_publisher` ([docs/ros.md](ros.md#scene-publisher)).\n\n{}\n## Demo recorder\n\n"
-      "Private parameters of `demo_recorder`, the demo's listener (`launch/demo.launch`).\n\n{}",
-      kMarkdownHead, stocs::paramsMarkdown(node_keys, "", false),
-      stocs::paramsMarkdown(stocs::PipelineParams::schema().describe(stocs::PipelineParams()),
-                            "estimation.", true),
-      stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(node.tracking), "tracking.",
-                            true),
-      stocs::paramsMarkdown(segmentationNodeKeys(), "", false),
-      stocs::paramsMarkdown(ScenePublisherParams::schema().describe(ScenePublisherParams()), "",
-                            false),
-      stocs::paramsMarkdown(DemoRecorderParams::schema().describe(DemoRecorderParams()), "",
-                            false));
+             "{}## Inputs, outputs, cache\n\n{}\n## Estimation\n\nUnder `estimation:` in the file; "
+             "the last column is the option of the `stocs` tool.\n\n{}\n## Tracking\n\nUnder "
+             "`tracking:` in the file ([docs/ros.md](ros.md#tracking)); the last column is the "
+             "option of "
+             "`stocs estimate`, which detects every image unless given `--track`.\n\n{}\n## "
+             "Segmentation "
+             "network\n\nPrivate parameters of "
+             "`segmentation_node` ([docs/ros.md](ros.md#segmentation-node)); config/segmenter.yaml "
+             "sets "
+             "them for the package's own network.\n\n{}\n## Scene publisher\n\nPrivate parameters "
+             "of "
+             "`scene_publisher` ([docs/ros.md](ros.md#scene-publisher)).\n\n{}\n## Demo "
+             "recorder\n\n"
+             "Private parameters of `demo_recorder`, the demo's listener "
+             "(`launch/demo.launch`).\n\n{}",
+             kMarkdownHead, stocs::paramsMarkdown(node_keys, "", false),
+             stocs::paramsMarkdown(
+                 stocs::PipelineParams::schema().describe(stocs::PipelineParams()), "estimation.",
+                 true),
+             stocs::paramsMarkdown(stocs::TrackingParams::schema().describe(node.tracking),
+                                   "tracking.", true),
+             stocs::paramsMarkdown(segmentationNodeKeys(), "", false),
+             stocs::paramsMarkdown(ScenePublisherParams::schema().describe(ScenePublisherParams()),
+                                   "", false),
+             stocs::paramsMarkdown(DemoRecorderParams::schema().describe(DemoRecorderParams()), "",
+                                   false)) +
+         fmt::format(
+             "\n## StoCS node\n\nPrivate ROS parameters of `stocs_node` and the nodelet, beside "
+             "the configuration file ([docs/ros.md](ros.md#parameters)).\n\n{}",
+             stocs::paramsMarkdown(StocsNodeParams::schema().describe(StocsNodeParams()), "",
+                                   false));
 }
 
 }  // namespace stocs_ros

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "stocs/util/error.h"
+#include "stocs_ros/common/schema_params.h"
 
 namespace stocs_ros {
 namespace {
@@ -11,20 +12,23 @@ namespace {
 constexpr double kWarnPeriod = 5.0;        // seconds between repeats of one kind of warning
 constexpr double kStatisticsPeriod = 1.0;  // seconds between ~statistics messages
 
-std::string requireConfigParameter(const ros::NodeHandle& pnh) {
-  std::string file;
-  if (!pnh.getParam("config", file) || file.empty()) {
+/// The private parameters, ~config set; throws stocs::InputError naming a bad one.
+StocsNodeParams readParams(const ros::NodeHandle& pnh) {
+  StocsNodeParams params;
+  readSchemaParams(pnh, StocsNodeParams::schema(), params);
+  if (params.config.empty()) {
     throw stocs::InputError(
-        fmt::format("parameter {}/config (the configuration file) is not set", pnh.getNamespace()));
+        fmt::format("parameter {} (the configuration file) is not set", pnh.resolveName("config")));
   }
-  return file;
+  return params;
 }
 
 }  // namespace
 
 StocsNode::StocsNode(ros::NodeHandle pnh)
     : pnh_(pnh),
-      setups_(requireConfigParameter(pnh), pnh.param<std::string>("dataset", "")),
+      params_(readParams(pnh)),
+      setups_(params_.config, params_.dataset),
       inputs_(pnh_, setups_.current()->config),
       statistics_(inputs_.topics()),
       statistics_pub_(pnh_.advertise<diagnostic_msgs::DiagnosticArray>("statistics", 1, true)),
