@@ -27,6 +27,9 @@
 
 namespace stocs_ros {
 
+/// Seconds between repeats of one kind of throttled warning or error; ~statistics counts them all.
+inline constexpr double kWarnPeriod = 5.0;
+
 /// The input a rejected frame's error names ("cloud", "probability image of 'box'", ...: the text
 /// before the first ": " of a stocs::InputError), or "internal error" for any other exception.
 std::string rejectionKind(std::exception_ptr error);

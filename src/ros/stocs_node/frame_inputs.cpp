@@ -1,12 +1,6 @@
 #include "stocs_ros/stocs_node/frame_inputs.h"
 
 namespace stocs_ros {
-namespace {
-
-constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of warning
-
-}  // namespace
-
 FrameInputs::FrameInputs(ros::NodeHandle pnh, const NodeConfig& config)
     : pnh_(std::move(pnh)),
       objects_(config.objects.size()),

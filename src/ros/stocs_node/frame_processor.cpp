@@ -1,12 +1,6 @@
 #include "stocs_ros/stocs_node/frame_processor.h"
 
 namespace stocs_ros {
-namespace {
-
-constexpr double kWarnPeriod = 5.0;  // seconds between repeats of one kind of error
-
-}  // namespace
-
 FrameProcessor::FrameProcessor(ros::NodeHandle& pnh, NodeStatistics& statistics)
     : statistics_(statistics), output_(pnh) {}
 

@@ -9,7 +9,6 @@
 namespace stocs_ros {
 namespace {
 
-constexpr double kWarnPeriod = 5.0;        // seconds between repeats of one kind of warning
 constexpr double kStatisticsPeriod = 1.0;  // seconds between ~statistics messages
 
 /// The private parameters, ~config set; throws stocs::InputError naming a bad one.
