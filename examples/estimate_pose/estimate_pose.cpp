@@ -45,9 +45,9 @@ int main(int argc, char** argv) {
         ++missed;
         continue;
       }
-      const Eigen::Vector3f t = r.estimate.pose.translation() * 1000.0f;
+      const Eigen::Vector3f t = r.estimate.best().pose.translation() * 1000.0f;
       std::cout << r.name << ": t = [" << t.x() << " " << t.y() << " " << t.z() << "] mm, score "
-                << r.estimate.score << ", " << r.estimate.seconds << " s\n";
+                << r.estimate.best().score << ", " << r.estimate.seconds << " s\n";
     }
     return missed == 0 && !frame.probabilities.empty() ? 0 : 1;
   } catch (const std::exception& e) {

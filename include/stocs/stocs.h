@@ -8,7 +8,7 @@
 //   stocs::Frame frame = stocs::Frame::fromDepth(depth_mm, camera, 0.001);
 //   frame.probabilities["cat"] = probability;             // CV_32FC1 in [0, 1]
 //   for (const stocs::ObjectResult& r : estimator.estimate(frame))
-//     if (r.estimate.found) use(r.name, r.estimate.pose);  // model to camera, metres
+//     if (r.estimate.found) use(r.name, r.estimate.best().pose);  // model to camera, metres
 
 #include <memory>
 #include <string>

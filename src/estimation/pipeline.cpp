@@ -61,10 +61,12 @@ PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& c
   std::optional<FreeSpaceCheck> surface;  // ranks candidates when enabled, always gives evidence
   if (camera) surface.emplace(cloud, *camera, params.stocs.free_space);
   const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
-  PoseEstimate result =
-      StocsEstimator(model, params.stocs).search(segment, rank_by_free_space ? &*surface : nullptr);
+  const FrameEvidence evidence{surface ? &*surface : nullptr};
+  PoseEstimate result = StocsEstimator(model, params.stocs)
+                            .search(segment, rank_by_free_space ? &*surface : nullptr, evidence);
   for (InstancePose& pose : result.instances) {
-    judgeInstance(pose, model.model, surface ? &*surface : nullptr, probability, params.confidence);
+    pose.pose = canonicalPose(pose.pose, model.symmetries);
+    judgeInstance(pose, model.model, evidence.surface, probability, params.confidence);
   }
   result.segment_points = segment.size();
   return result;

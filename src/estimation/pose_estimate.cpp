@@ -2,15 +2,8 @@
 
 namespace stocs {
 
-void PoseEstimate::takeFirstInstance() {
+void PoseEstimate::setFound() {
   found = !instances.empty();
-  if (!found) return;
-  const InstancePose& best = instances.front();
-  pose = best.pose;
-  score = best.score;
-  lcp = best.lcp;
-  refined = best.refined;
-  region = best.region;
 }
 
 }  // namespace stocs

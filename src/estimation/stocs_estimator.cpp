@@ -12,6 +12,7 @@
 #include "scheduling/base_dispenser.h"
 #include "scheduling/consensus_stop.h"
 #include "scheduling/early_refinements.h"
+#include "stages/alternative_choice.h"
 #include "stages/base_verification.h"
 #include "stages/candidate_refinement.h"
 #include "stocs/estimation/instance_separation.h"
@@ -144,7 +145,10 @@ const ParamSet<StocsParams>& StocsParams::schema() {
           .add(&StocsParams::instance_separation, "instance_separation", "",
                ParamRange::aboveUpTo(0, 1),
                "two poses are one instance below this ADD-S, fraction of the diameter")
-          .flag("--instance-separation");
+          .flag("--instance-separation")
+          .add(&StocsParams::shape_alternatives, "shape_alternatives",
+               "judge each pose against the model's near-symmetric turns (free space, colour)")
+          .flag("--shape-alternatives");
   return schema;
 }
 
@@ -201,8 +205,8 @@ std::vector<BaseOutcome> StocsEstimator::runBases(const SoftSegment& segment,
   return outcomes;
 }
 
-PoseEstimate StocsEstimator::search(const SoftSegment& segment,
-                                    const FreeSpaceCheck* free_space) const {
+PoseEstimate StocsEstimator::search(const SoftSegment& segment, const FreeSpaceCheck* free_space,
+                                    const FrameEvidence& evidence) const {
   const Clock::time_point start = Clock::now();
   PoseEstimate result;
   if (segment.size() < 4) {
@@ -235,10 +239,14 @@ PoseEstimate StocsEstimator::search(const SoftSegment& segment,
   result.instances =
       selectInstances(ranked, refinedBases(), static_cast<size_t>(params_.instances), refinement,
                       params_.instance_separation, early.begun(), threads, result.icp_steps);
+  if (params_.shape_alternatives) {
+    chooseAmongAlternatives(result.instances, model_, segment, refinement, evidence, threads,
+                            result.icp_steps);
+  }
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   addConsensus(model_.model, proximity_.centre(),
                params_.instance_separation * model_.model.diameter, ranked, result);
-  result.takeFirstInstance();
+  result.setFound();
   result.seconds = secondsSince(start);
   return result;
 }

@@ -86,6 +86,21 @@ CameraIntrinsics BopFrameCamera::intrinsics(int width, int height) const {
   return k;
 }
 
+ObjectSymmetries BopObjectInfo::symmetries() const {
+  ObjectSymmetries out;
+  for (const Eigen::Matrix4d& m : symmetries_discrete) {
+    Eigen::Isometry3f s = Eigen::Isometry3f::Identity();
+    s.linear() = m.topLeftCorner<3, 3>().cast<float>();
+    s.translation() = (m.topRightCorner<3, 1>() / 1000.0).cast<float>();
+    out.discrete.push_back(s);
+  }
+  for (const ContinuousSymmetry& c : symmetries_continuous) {
+    out.continuous.push_back(
+        {c.axis.normalized().cast<float>(), (c.offset_mm / 1000.0).cast<float>()});
+  }
+  return out;
+}
+
 BopDataset::BopDataset(fs::path root, std::string split)
     : root_(std::move(root)), split_(std::move(split)) {
   std::error_code ec;
@@ -164,7 +179,10 @@ std::map<int, std::vector<BopGtInstance>> BopDataset::sceneGroundTruth(int scene
 }
 
 std::map<int, BopObjectInfo> BopDataset::modelsInfo() const {
-  const fs::path file = root_ / "models" / "models_info.json";
+  return readModelsInfo(root_ / "models" / "models_info.json");
+}
+
+std::map<int, BopObjectInfo> readModelsInfo(const fs::path& file) {
   std::map<int, BopObjectInfo> info;
   std::error_code ec;
   if (!fs::exists(file, ec)) return info;

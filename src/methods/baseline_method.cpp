@@ -31,16 +31,14 @@ PoseEstimate BaselineMethod::estimate(const ObjectInput& in) {
   if (segment.size() >= kMinSegmentPoints) {
     const std::optional<BaselineHypothesis> h = search(segment, in);
     if (h && h->pose.matrix().allFinite()) {
-      result.found = true;
-      result.score = static_cast<float>(h->score);
       result.hypotheses = h->hypotheses;
-      result.pose = in.params->stocs.icp.enabled
-                        ? refine(in.model->model, segment, h->pose, in.params->stocs)
-                        : h->pose;
       InstancePose only;
-      only.pose = result.pose;
-      only.score = result.score;
+      only.score = static_cast<float>(h->score);
+      only.pose = in.params->stocs.icp.enabled
+                      ? refine(in.model->model, segment, h->pose, in.params->stocs)
+                      : h->pose;
       result.instances.push_back(only);
+      result.setFound();
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

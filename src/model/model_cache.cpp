@@ -192,13 +192,15 @@ std::filesystem::path entryFile(const std::filesystem::path& directory,
          fmt::format("{}-{:016x}.stocsmap", std::filesystem::path(model_file).stem().string(), key);
 }
 
+/// What is computed on loading rather than stored.
+void findSymmetries(PreparedModel& m) {
+  m.near_symmetries = findNearSymmetries(m.model);
+  m.shape_alternatives = findShapeAlternatives(m.model);
+}
+
 PreparedModel prepareUncached(const std::string& model_file, float unit_scale,
                               const ModelPreparationParams& params) {
-  PreparedModel m;
-  m.model = prepareModel(loadMesh(model_file, unit_scale), params.sampling);
-  m.ppf_map = PpfHashMap::build(m.model, params.ppf);
-  m.near_symmetries = findNearSymmetries(m.model);
-  return m;
+  return prepareMesh(loadMesh(model_file, unit_scale), params);
 }
 
 }  // namespace
@@ -215,6 +217,14 @@ const char* toString(CacheOutcome outcome) {
       return "built (not cached)";
   }
   return "?";
+}
+
+PreparedModel prepareMesh(const MeshData& mesh, const ModelPreparationParams& params) {
+  PreparedModel m;
+  m.model = prepareModel(mesh, params.sampling);
+  m.ppf_map = PpfHashMap::build(m.model, params.ppf);
+  findSymmetries(m);
+  return m;
 }
 
 PreparedModel prepareModelFile(const std::string& model_file, float unit_scale,
@@ -259,7 +269,7 @@ PreparedModel ModelCache::load(const std::string& model_file, float unit_scale,
   if (existed) {
     try {
       PreparedModel m = readEntry(r.entry, key);
-      m.near_symmetries = findNearSymmetries(m.model);
+      findSymmetries(m);
       r.outcome = CacheOutcome::kLoaded;
       return m;
     } catch (const InputError& e) {

@@ -180,6 +180,9 @@ class EstimateRun {
     CacheReport report;
     PreparedModel& m = models_[obj] = cache_.load(dataset_.modelPath(obj).string(),
                                                   o_.model.unit_scale, o_.params.model, &report);
+    if (const auto info = info_.find(obj); info != info_.end()) {
+      m.symmetries = info->second.symmetries();
+    }
     fmt::print(stderr, "model {}: {} samples, PPF map {:.2f} MB, {}{}\n", obj, m.model.size(),
                m.ppf_map.memoryBytes() / 1e6, toString(report.outcome),
                report.detail.empty() ? "" : " (" + report.detail + ")");
@@ -323,6 +326,7 @@ class EstimateRun {
       if (method_->givesConfidence()) {
         line += instance.accepted ? fmt::format(", confidence {:.3f}", instance.confidence)
                                   : ", rejected: " + instance.rejection;
+        if (!instance.ambiguous.empty()) line += ", " + ambiguityText(instance.ambiguous);
         rejected_ += !instance.accepted;
       }
       if (!method_->givesConfidence() || instance.accepted) {

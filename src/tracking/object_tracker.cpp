@@ -154,7 +154,7 @@ class ObjectTracker::Step {
       e.instances.push_back(std::move(pose));
       out.states.push_back(TrackState::kUntracked);
     }
-    e.takeFirstInstance();
+    e.setFound();
     if (!out.detected && !out.searched && follower_) {
       e.segment_points = follower_->segment().size();
     }

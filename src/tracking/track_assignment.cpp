@@ -16,6 +16,7 @@ TrackAssignment::TrackAssignment(std::vector<Track>& tracks, std::vector<char>& 
       extent_(model.model),
       confidence_(pipeline.confidence),
       model_(model.model),
+      symmetries_(model.symmetries),
       separation_(pipeline.stocs.instance_separation * model.model.diameter) {}
 
 const InstanceSeparation& TrackAssignment::samePlace() const {
@@ -106,7 +107,9 @@ std::vector<int> TrackAssignment::assign(const PoseEstimate& found) {
 void TrackAssignment::take(int k, const InstancePose& pose) {
   Track& track = tracks_[k];
   moved_ = moved_ || !samePlace().samePlace(track.pose.pose, pose.pose);
+  const Eigen::Isometry3f previous = track.pose.pose;
   track.pose = pose;
+  track.pose.pose = nearestEquivalentPose(pose.pose, previous, symmetries_);
   track.state = TrackState::kRedetected;
   track.motion.stop();  // a detection says nothing of the motion
   settled_[k] = 1;

@@ -49,6 +49,7 @@ class TrackAssignment {
   PoseProximity extent_;
   const ConfidenceParams& confidence_;
   const ObjectModel& model_;
+  const ObjectSymmetries& symmetries_;  ///< declared: a detection takes the track's equivalent
   float separation_;                                            // of instances, in metres
   mutable std::optional<InstanceSeparation> same_place_;        // samePlace()
   const std::vector<Eigen::Isometry3f>* base_poses_ = nullptr;  // of the poses being assigned

@@ -107,9 +107,10 @@ class BaselineTest : public ::testing::TestWithParam<std::string> {
   }
 
   static double addsOf(const PoseEstimate& r, const Eigen::Isometry3f& truth = truth_) {
-    return addsError(model_.model.points,
-                     {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},
-                     {truth.linear().cast<double>(), truth.translation().cast<double>()});
+    return addsError(
+        model_.model.points,
+        {r.best().pose.linear().cast<double>(), r.best().pose.translation().cast<double>()},
+        {truth.linear().cast<double>(), truth.translation().cast<double>()});
   }
 
   static CameraIntrinsics camera_;
@@ -138,14 +139,14 @@ TEST_P(BaselineTest, FindsTheRenderedPoseWithAndWithoutRefinement) {
   const PoseEstimate raw = method(GetParam()).estimate(input(params));
   ASSERT_TRUE(raw.found);
   EXPECT_LT(addsOf(raw), 0.10 * model_.model.diameter);
-  EXPECT_GT(raw.score, 0.0);
+  EXPECT_GT(raw.best().score, 0.0);
   params.stocs.icp.enabled = true;
   const PoseEstimate refined = method(GetParam()).estimate(input(params));
   ASSERT_TRUE(refined.found);
   if (refinedPoseHeldToTheBar(GetParam())) {
     EXPECT_LT(addsOf(refined), 0.10 * model_.model.diameter);
   }
-  EXPECT_EQ(refined.score, raw.score);  // the method's own fitness, before refinement
+  EXPECT_EQ(refined.best().score, raw.best().score);  // the method's own fitness, before refinement
   EXPECT_GT(refined.seconds, 0.0);
 }
 
@@ -156,8 +157,8 @@ TEST_P(BaselineTest, TheSameSeedGivesTheSamePose) {
   const PoseEstimate first = method(GetParam()).estimate(input(params));
   const PoseEstimate second = method(GetParam()).estimate(input(params));
   ASSERT_TRUE(first.found && second.found);
-  EXPECT_EQ(first.pose.matrix(), second.pose.matrix());
-  EXPECT_EQ(first.score, second.score);
+  EXPECT_EQ(first.best().pose.matrix(), second.best().pose.matrix());
+  EXPECT_EQ(first.best().score, second.best().score);
 }
 
 TEST_P(BaselineTest, EmptyTinyOrInvalidScenesGiveNoPose) {
@@ -196,7 +197,7 @@ TEST_P(BaselineTest, AFlatFaceOnSegmentNeverCrashes) {
   const PoseEstimate r = method(GetParam()).estimate(input(withSeed(1), &probability_, &wall));
   EXPECT_GT(r.segment_points, 100u);
   if (r.found) {
-    EXPECT_TRUE(r.pose.matrix().allFinite());
+    EXPECT_TRUE(r.best().pose.matrix().allFinite());
   }
 }
 
@@ -324,7 +325,8 @@ TEST(PpfBaseline, KeepsOneTrainedDetectorPerModel) {
       const PoseEstimate r = ppf->estimate(in);
       ASSERT_TRUE(r.found) << "round " << round;
       EXPECT_LT(addsError(model.model.points,
-                          {r.pose.linear().cast<double>(), r.pose.translation().cast<double>()},
+                          {r.best().pose.linear().cast<double>(),
+                           r.best().pose.translation().cast<double>()},
                           {truth.linear().cast<double>(), truth.translation().cast<double>()}),
                 0.05 * model.model.diameter)
           << "round " << round;

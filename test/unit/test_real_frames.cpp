@@ -44,8 +44,8 @@ void expectNineOfTenSeeds(const std::filesystem::path& root, const Frame& f) {
                                         boundary.empty() ? nullptr : &boundary);
     double best = 1e9;
     if (r.found && r.instances.front().accepted) {  // a rejected pose is not published
-      const RigidPose est{r.pose.linear().cast<double>(),
-                          r.pose.translation().cast<double>() * 1000};
+      const RigidPose est{r.best().pose.linear().cast<double>(),
+                          r.best().pose.translation().cast<double>() * 1000};
       for (const BopGtInstance& g : truth) {
         if (g.obj_id == f.object) best = std::min(best, addsError(points_mm, est, {g.R, g.t_mm}));
       }

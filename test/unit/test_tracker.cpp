@@ -323,7 +323,7 @@ PoseEstimate detectionOf(const Eigen::Isometry3f& pose, ConfidenceEvidence evide
   p.confidence = params.confidence(evidence);
   p.accepted = true;
   e.instances.push_back(p);
-  e.takeFirstInstance();
+  e.setFound();
   return e;
 }
 

@@ -42,7 +42,9 @@ PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv:
                           const CameraIntrinsics* camera = nullptr);
 
 /// detectObject after its soft segment: StoCS on `segment` (of `cloud` and `probability`), each
-/// instance judged (judgeInstance). Leaves the estimate's segment time and `seconds` to the caller.
+/// instance turned to its canonical equivalent under the model's declared symmetries
+/// (canonicalPose) and judged (judgeInstance). Leaves the estimate's segment time and `seconds` to
+/// the caller.
 PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
                              const cv::Mat& probability, const PreparedModel& model,
                              const PipelineParams& params, const CameraIntrinsics* camera);

@@ -9,6 +9,7 @@
 
 #include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/estimation/stages/pose_confidence.h"
+#include "stocs/model/near_symmetries.h"
 
 namespace stocs {
 
@@ -42,19 +43,19 @@ struct InstancePose {
   /// x, y and z in radians (REP 103 order, as geometry_msgs/PoseWithCovariance). Zero where the
   /// method gives none.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  /// The model's shape alternatives that fit the data as well as `pose` (nothing seen tells them
+  /// apart, e.g. a mug whose handle is hidden): the object may as well be at pose * motion. The
+  /// covariance spans them. Empty: the pose is told apart from every alternative (StoCS only).
+  std::vector<ShapeAlternative> ambiguous;
 };
 
-/// What the estimation of one object gives: the pose (and further instances) with their
-/// objective, and what it took. Every method returns it (PoseMethod), StoCS fills every field.
+/// What the estimation of one object gives: its distinct poses with their objective, and what it
+/// took. Every method returns it (PoseMethod), StoCS fills every field.
 struct PoseEstimate {
-  bool found = false;
-  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();  ///< model to camera
-  float score = 0;       ///< of the returned pose, as InstancePose::score
-  LcpDetail lcp;         ///< objective of the returned pose (StoCS only)
-  bool refined = false;  ///< ICP moved the pose and did not lower the objective
-  int region = -1;       ///< instance region the pose was found in (-1: no regions)
-  /// Distinct poses, best objective first, at most StocsParams::instances; the first is the pose
-  /// above.
+  bool found = false;  ///< there is a pose: `instances` is not empty
+  /// Distinct poses, best first (by objective, then as the near-symmetry choice and the declared
+  /// symmetries settle them), at most StocsParams::instances. The first is the object's pose: the
+  /// one pose every output reports.
   std::vector<InstancePose> instances;
   /// The best pose of each base that found one, best objective first (StoCS only): the consensus
   /// evidence of a pose found otherwise (a followed one) is counted among them.
@@ -75,9 +76,11 @@ struct PoseEstimate {
   /// method's own steps (PoseMethod).
   double seconds = 0;
 
-  /// Sets `found` (whether there is an instance) and, from the first instance, the pose, score,
-  /// objective, refined flag and region.
-  void takeFirstInstance();
+  /// The object's pose (the first instance); only when `found`.
+  const InstancePose& best() const { return instances.front(); }
+  InstancePose& best() { return instances.front(); }
+  /// Sets `found`: whether there is an instance.
+  void setFound();
 };
 
 }  // namespace stocs

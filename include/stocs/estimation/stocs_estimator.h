@@ -18,6 +18,7 @@
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/estimation/stages/base_sampler.h"
 #include "stocs/estimation/stages/congruent_set_matcher.h"
+#include "stocs/estimation/stages/frame_evidence.h"
 #include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/estimation/stages/icp_refiner.h"
 #include "stocs/estimation/stages/lcp_scorer.h"
@@ -79,6 +80,9 @@ struct StocsParams {
   /// Two poses are one instance when their ADD-S distance is below this fraction of the diameter
   /// (the success threshold of the evaluation, so symmetric look-alikes merge).
   float instance_separation = 0.1f;
+  /// Each pose is judged against the model's shape alternatives (a mug turned about its body, a
+  /// box by a half turn: findShapeAlternatives) on what tells them apart, and the best kept.
+  bool shape_alternatives = true;
   double time_budget = 0;  ///< seconds per object; 0: no limit
   uint64_t seed = 0;
   int threads = 0;  ///< 0: all cores
@@ -100,8 +104,10 @@ class StocsEstimator {
   /// instances), unjudged. With `free_space` (the frame's organized cloud), the refined candidates
   /// compete by their objective times (1 - FreeSpaceCheck::violation): of poses that explain the
   /// segment alike, the one that puts no surface where the sensor sees through wins. Reported
-  /// scores stay the objective's.
-  PoseEstimate search(const SoftSegment& segment, const FreeSpaceCheck* free_space = nullptr) const;
+  /// scores stay the objective's. With StocsParams::shape_alternatives, each pose is then judged
+  /// against its shape alternatives on the segment and `evidence` (alternative_choice.h).
+  PoseEstimate search(const SoftSegment& segment, const FreeSpaceCheck* free_space = nullptr,
+                      const FrameEvidence& evidence = {}) const;
 
   const StocsParams& params() const { return params_; }
 

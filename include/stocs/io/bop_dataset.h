@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "stocs/geometry/camera.h"
+#include "stocs/model/object_symmetries.h"
 
 namespace cv {
 class Mat;
@@ -43,7 +44,13 @@ struct BopObjectInfo {
   std::vector<ContinuousSymmetry> symmetries_continuous;
 
   bool symmetric() const { return !symmetries_discrete.empty() || !symmetries_continuous.empty(); }
+  /// The symmetries in metres, as estimation takes them (PreparedModel::symmetries).
+  ObjectSymmetries symmetries() const;
 };
+
+/// A BOP models_info.json, by object id; empty when the file does not exist. Throws InputError
+/// naming the file and the problem.
+std::map<int, BopObjectInfo> readModelsInfo(const std::filesystem::path& file);
 
 class BopDataset {
  public:

@@ -12,6 +12,7 @@
 
 #include "stocs/model/near_symmetries.h"
 #include "stocs/model/object_model.h"
+#include "stocs/model/object_symmetries.h"
 #include "stocs/model/ppf_hash_map.h"
 #include "stocs/util/param_set.h"
 
@@ -32,7 +33,15 @@ struct PreparedModel {
   PpfHashMap ppf_map;
   /// findNearSymmetries(model): computed on loading, not stored in the cache.
   std::vector<NearSymmetry> near_symmetries;
+  /// findShapeAlternatives(model): computed on loading, not stored in the cache.
+  std::vector<ShapeAlternative> shape_alternatives;
+  /// Declared by the user (the node's `symmetries`, models_info.json), not read from the model
+  /// file: empty after loading.
+  ObjectSymmetries symmetries;
 };
+
+/// Prepares a mesh or point model (metres) already in memory.
+PreparedModel prepareMesh(const MeshData& mesh, const ModelPreparationParams& params);
 
 /// Loads and prepares a model without any cache.
 PreparedModel prepareModelFile(const std::string& model_file, float unit_scale,

@@ -6,7 +6,8 @@
 // nearest symmetric equivalent. The pose covariance widens the rotation about a near symmetry's
 // axis so that the other pose lies inside its ellipsoids (pose_covariance.h).
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <string>
 #include <vector>
 
 #include "stocs/model/object_model.h"
@@ -20,6 +21,28 @@ struct NearSymmetry {
   /// settles on the turn is off by about as much in position.
   float shift = 0;
 };
+
+/// A rigid motion of the model (model frame) that maps its surface nearly onto itself: a pose and
+/// the pose moved by it fit the shape about equally, and only what the shape does not show (a
+/// handle over free space, a hidden part seen, colour) tells them apart. A mug turned about its
+/// body's axis, a box turned by a half about any axis, a can by any angle.
+struct ShapeAlternative {
+  Eigen::Isometry3f motion = Eigen::Isometry3f::Identity();  ///< x -> motion * x, model frame
+  Eigen::Vector3f axis = Eigen::Vector3f::UnitZ();           ///< of the motion's rotation, unit
+  float angle = 0;  ///< radians in (0, pi]: the rotation's angle about `axis`
+  float shift = 0;  ///< metres: mean surface distance of the moved samples (as NearSymmetry)
+};
+
+/// Turns by multiples of 30 degrees about the samples' principal axes through their centre, kept
+/// when the turned samples lie within the sampling radius of the surface on average, else aligned
+/// again onto the model by a few point-to-point ICP steps (an axis off the centre, as a mug's body
+/// beside its handle) and kept if they then do; a kept motion turns by at least 15 degrees and is
+/// at least 15 degrees from every motion kept before. Deterministic; a few tens of milliseconds.
+std::vector<ShapeAlternative> findShapeAlternatives(const ObjectModel& model);
+
+/// What `alternatives` of one pose say to a user: "fits as well turned by 90, 180 deg about model
+/// axis [0.00 0.00 1.00]", one clause per axis (within 10 degrees).
+std::string ambiguityText(const std::vector<ShapeAlternative>& alternatives);
 
 /// Turns by a quarter and a half about the samples' principal axes whose mean
 /// point-to-plane distance of the turned samples to the model's samples (normals within 30

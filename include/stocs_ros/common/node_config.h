@@ -10,9 +10,9 @@
 
 #include "stocs/estimation/pipeline.h"
 #include "stocs/io/segmentation_inputs.h"
+#include "stocs/model/object_symmetries.h"
 #include "stocs/tracking/tracking_params.h"
 #include "stocs_ros/common/stamp_synchronizer.h"
-#include "stocs_ros/common/symmetric_pose.h"
 
 namespace stocs_ros {
 
@@ -23,7 +23,7 @@ struct ObjectConfig {
   float unit_scale = 0.001f;    ///< model units to metres
   std::string mesh_url;         ///< rviz mesh_resource; empty: markers show the model samples
   float mesh_scale = 0.001f;    ///< mesh units to metres (default: unit_scale)
-  ObjectSymmetries symmetries;  ///< in metres
+  stocs::ObjectSymmetries symmetries;  ///< in metres
 };
 
 enum class DepthSource { kCloud, kDepthImage };

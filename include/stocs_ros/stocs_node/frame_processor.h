@@ -1,9 +1,9 @@
 #pragma once
 // What the node's estimation worker does with a job: detects its objects (detectJob), or, for the
 // frames of a stream with tracking.enabled, tracks them (trackJob with a stocs::StreamTracker that
-// starts anew with new models, and takes new tracking settings without ending its tracks); chooses
-// each symmetric object's published pose (SymmetricPoseTracker); expresses the result in the output
-// frame (OutputFrame); publishes it (OutputPublisher) and counts it. Runs on the worker's thread
+// starts anew with new models, and takes new tracking settings without ending its tracks; the core
+// chooses a symmetric object's equivalent pose); expresses the result in the output frame
+// (OutputFrame); publishes it (OutputPublisher) and counts it. Runs on the worker's thread
 // only, one job at a time, so it holds no lock.
 
 #include <ros/ros.h>
@@ -13,7 +13,6 @@
 #include <optional>
 
 #include "stocs/tracking/stream_tracker.h"
-#include "stocs_ros/common/symmetric_pose.h"
 #include "stocs_ros/stocs_node/estimation_setup.h"
 #include "stocs_ros/stocs_node/frame_estimation.h"
 #include "stocs_ros/stocs_node/node_statistics.h"
@@ -45,7 +44,6 @@ class FrameProcessor {
   NodeStatistics& statistics_;
   OutputFrame output_frame_;
   OutputPublisher output_;
-  SymmetricPoseTracker symmetric_choice_;
   /// The tracks of the frames (never of ~estimate calls), of `tracked_models_`; their full
   /// detections run on a thread of their own.
   std::optional<stocs::StreamTracker> stream_tracker_;

@@ -28,8 +28,7 @@ struct FoundPose {
 };
 
 /// Every accepted pose of the result: objects in result order, each object's instances best
-/// first. A found estimate without instances (a method that lists none) counts as one accepted
-/// instance.
+/// first.
 std::vector<FoundPose> foundPoses(const FrameResult& result);
 
 /// Every rejected pose of the result, in the same order.

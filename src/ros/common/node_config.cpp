@@ -8,6 +8,7 @@
 #include <regex>
 #include <set>
 
+#include "stocs/io/bop_dataset.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/util/error.h"
 #include "stocs/util/param_file.h"
@@ -89,8 +90,8 @@ Eigen::Matrix<float, N, 1> readVector(const MapReader& reader, const YAML::Node&
   return v;
 }
 
-ObjectSymmetries readSymmetries(MapReader reader, float unit_scale) {
-  ObjectSymmetries out;
+stocs::ObjectSymmetries readSymmetries(MapReader reader, float unit_scale) {
+  stocs::ObjectSymmetries out;
   const std::string discrete_name = reader.fullName("discrete");
   const YAML::Node discrete = reader.node("discrete");
   if (discrete && !discrete.IsSequence()) reader.fail(discrete, discrete_name, "expected a list");
@@ -114,7 +115,7 @@ ObjectSymmetries readSymmetries(MapReader reader, float unit_scale) {
   }
   for (size_t k = 0; continuous && k < continuous.size(); ++k) {
     MapReader entry(reader.file(), continuous[k], fmt::format("{}[{}]", continuous_name, k));
-    ContinuousSymmetry c;
+    stocs::SymmetryAxis c;
     const YAML::Node axis = entry.node("axis");
     if (!axis) entry.fail(continuous[k], entry.fullName("axis"), "missing");
     c.axis = readVector<3>(entry, axis, entry.fullName("axis"));
@@ -127,6 +128,19 @@ ObjectSymmetries readSymmetries(MapReader reader, float unit_scale) {
   }
   reader.rejectUnknownKeys();
   return out;
+}
+
+/// What models_info.json beside a BOP model file (obj_<id>.ply, in mm) declares for it, in
+/// metres: none without such a file or entry.
+stocs::ObjectSymmetries modelsInfoSymmetries(const fs::path& model) {
+  static const std::regex bop_name(R"(obj_0*(\d+)\.\w+)");
+  std::smatch id;
+  const std::string name = model.filename().string();
+  if (!std::regex_match(name, id, bop_name)) return {};
+  const std::map<int, stocs::BopObjectInfo> info =
+      stocs::readModelsInfo(model.parent_path() / "models_info.json");
+  const auto entry = info.find(std::stoi(id[1]));
+  return entry == info.end() ? stocs::ObjectSymmetries{} : entry->second.symmetries();
 }
 
 ObjectConfig readObject(MapReader reader, int position, const PathContext& paths) {
@@ -165,7 +179,15 @@ ObjectConfig readObject(MapReader reader, int position, const PathContext& paths
   } catch (const InputError& e) {
     throw InputError(fmt::format("{}{}: {}", where, key, e.what()));
   }
-  o.symmetries = readSymmetries(reader.map("symmetries"), o.unit_scale);
+  if (reader.node("symmetries")) {
+    o.symmetries = readSymmetries(reader.map("symmetries"), o.unit_scale);
+  } else {
+    try {
+      o.symmetries = modelsInfoSymmetries(o.model);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}symmetries from models_info.json: {}", where, e.what()));
+    }
+  }
   reader.rejectUnknownKeys();
   return o;
 }

@@ -61,7 +61,7 @@ The estimation keys are also options of `stocs estimate`, `stocs bench` and `sto
 | `unit_scale` | `0.001` | model units to metres (BOP models are in mm) |
 | `mesh` | `""` | rviz mesh resource for the markers (empty: the model file itself for an OBJ, STL, DAE, glTF or GLB model, drawn in the frame the estimator reads it in; model points for PLY and PCD) |
 | `mesh_scale` | `unit_scale` | mesh units to metres |
-| `symmetries` | none | `discrete` (4x4 row-major) and `continuous` (`axis`, `offset`), as in BOP `models_info.json`, model units; keeps reported poses continuous across frames |
+| `symmetries` | `models_info.json` beside a BOP model `obj_<id>.ply`, else none | `discrete` (4x4 row-major) and `continuous` (`axis`, `offset`), as in BOP `models_info.json`, model units; every output gives one of the equivalent poses: the one nearest the track's previous pose, else the one whose axes are nearest the camera's |
 
 `input.channels` (with `input.probability: multichannel`) lists the object name of each channel of
 `~probability` in order, `-` for a channel to ignore.

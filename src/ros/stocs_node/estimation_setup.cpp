@@ -15,8 +15,10 @@ std::shared_ptr<const EstimationSetup> EstimationSetup::load(
   for (const ObjectConfig& o : setup->config.objects) {
     stocs::CacheReport report;
     try {
-      setup->models.push_back(std::make_shared<const stocs::PreparedModel>(
-          cache.load(o.model.string(), o.unit_scale, setup->config.estimation.model, &report)));
+      stocs::PreparedModel m =
+          cache.load(o.model.string(), o.unit_scale, setup->config.estimation.model, &report);
+      m.symmetries = o.symmetries;
+      setup->models.push_back(std::make_shared<const stocs::PreparedModel>(std::move(m)));
     } catch (const stocs::InputError& e) {
       throw stocs::InputError(fmt::format("object '{}': {}", o.name, e.what()));
     }

@@ -23,13 +23,6 @@ FrameResult FrameProcessor::process(const QueuedJob& queued) {
   // ~estimate calls detect: a call on an older frame or on given inputs must not move the tracks.
   const bool tracking = !queued.requested && queued.setup->config.tracking.enabled;
   FrameResult result = tracking ? track(queued) : detectJob(queued.job, *queued.setup);
-  for (ObjectOutcome& o : result.objects) {
-    stocs::PoseEstimate& e = o.estimate;
-    if (e.found) {
-      e.pose = symmetric_choice_.track(o.object, e.pose,
-                                       queued.setup->config.objects[o.object].symmetries);
-    }
-  }
   const OutputConfig& output = queued.setup->config.output;
   output_frame_.express(result, output.frame, output.transform_timeout);
   output_.publish(result, *queued.setup, queued.timeline);

@@ -25,7 +25,6 @@ void moveResult(FrameResult& result, const Eigen::Isometry3d& output_from_input,
   const Eigen::Isometry3f move = output_from_input.cast<float>();
   const Eigen::Matrix3d rotation = output_from_input.rotation();
   for (ObjectOutcome& o : result.objects) {
-    o.estimate.pose = move * o.estimate.pose;
     for (stocs::InstancePose& instance : o.estimate.instances) {
       instance.pose = move * instance.pose;
       instance.covariance = rotateCovariance(instance.covariance, rotation);

@@ -113,14 +113,6 @@ std::vector<FoundPose> posesAccepted(const FrameResult& result, bool accepted) {
   std::vector<FoundPose> out;
   for (const ObjectOutcome& o : result.objects) {
     const stocs::PoseEstimate& e = o.estimate;
-    if (!e.found) continue;
-    if (e.instances.empty()) {
-      stocs::InstancePose only;
-      only.pose = e.pose;
-      only.score = e.score;
-      if (accepted) out.push_back({&o, 0, only});
-      continue;
-    }
     for (size_t k = 0; k < e.instances.size(); ++k) {
       if (e.instances[k].accepted == accepted) out.push_back({&o, k, e.instances[k]});
     }
@@ -153,6 +145,7 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
     p.estimation_time = f.outcome->estimate.seconds;
     p.hypotheses_verified = f.outcome->estimate.hypotheses;
     p.state = stateOf(f);
+    if (!f.estimate.ambiguous.empty()) p.ambiguity = stocs::ambiguityText(f.estimate.ambiguous);
     out.objects.push_back(p);
   }
   for (const FoundPose& f : rejectedPoses(result)) {

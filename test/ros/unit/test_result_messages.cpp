@@ -34,9 +34,13 @@ EstimationSetup twoObjects() {
 
 ObjectOutcome outcome(size_t object, bool found, float x) {
   ObjectOutcome o{object, {}, {}};
-  o.estimate.found = found;
-  o.estimate.pose.translation() = Eigen::Vector3f(x, 0, 1);
-  o.estimate.score = 0.25f;
+  if (found) {
+    stocs::InstancePose pose;
+    pose.pose.translation() = Eigen::Vector3f(x, 0, 1);
+    pose.score = 0.25f;
+    o.estimate.instances.push_back(pose);
+  }
+  o.estimate.setFound();
   o.estimate.hypotheses = 42;
   o.estimate.seconds = 0.5;
   return o;
@@ -122,9 +126,9 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
   }
   FrameResult result;
   result.objects = {outcome(0, true, -0.12f), outcome(1, true, 0.12f)};
-  result.objects[0].estimate.pose.translation().y() = -0.2f;
-  result.objects[1].estimate.pose.translation().y() = 0.15f;
-  result.objects[1].estimate.pose.linear() =
+  result.objects[0].estimate.best().pose.translation().y() = -0.2f;
+  result.objects[1].estimate.best().pose.translation().y() = 0.15f;
+  result.objects[1].estimate.best().pose.linear() =
       Eigen::AngleAxisf(0.5f, Eigen::Vector3f(1, 0.2f, 0).normalized()).matrix();
   std::set<MarkerKey> shown;
   const visualization_msgs::MarkerArray markers = toMarkers(result, setup, shown);
@@ -132,7 +136,7 @@ TEST(ResultMessages, LabelsSitJustAboveTheirObjectAsTheCameraSeesIt) {
   for (size_t object = 0; object < 2; ++object) {
     const visualization_msgs::Marker& label = markers.markers[2 * object + 1];
     ASSERT_EQ(label.type, visualization_msgs::Marker::TEXT_VIEW_FACING);
-    const Eigen::Isometry3f& pose = result.objects[object].estimate.pose;
+    const Eigen::Isometry3f& pose = result.objects[object].estimate.best().pose;
     // The object's extent in normalized image coordinates (x / z, y / z; y down).
     float left = 1e9f, right = -1e9f, top = 1e9f;
     for (const Eigen::Vector3f& p : setup.models[object]->model.points) {

@@ -1,8 +1,8 @@
-#include "stocs_ros/common/symmetric_pose.h"
+#include "stocs/model/object_symmetries.h"
 
 #include <cmath>
 
-namespace stocs_ros {
+namespace stocs {
 namespace {
 
 float rotationAngle(const Eigen::Matrix3f& a, const Eigen::Matrix3f& b) {
@@ -13,7 +13,7 @@ float rotationAngle(const Eigen::Matrix3f& a, const Eigen::Matrix3f& b) {
 /// trace(R_ref^T R S): for M = R_ref^T R and K = [a]x that trace is
 /// cos(theta) (tr M - a'Ma) + sin(theta) tr(MK) + a'Ma.
 Eigen::Isometry3f bestRotationAbout(const Eigen::Isometry3f& pose, const Eigen::Matrix3f& reference,
-                                    const ContinuousSymmetry& symmetry) {
+                                    const SymmetryAxis& symmetry) {
   const Eigen::Vector3f a = symmetry.axis.normalized();
   const Eigen::Matrix3f m = reference.transpose() * pose.linear();
   Eigen::Matrix3f k;
@@ -36,7 +36,7 @@ Eigen::Isometry3f nearestEquivalentPose(const Eigen::Isometry3f& pose,
   Eigen::Isometry3f best = pose;
   float best_angle = rotationAngle(pose.linear(), reference.linear());
   for (Eigen::Isometry3f candidate : candidates) {
-    for (const ContinuousSymmetry& c : symmetries.continuous) {
+    for (const SymmetryAxis& c : symmetries.continuous) {
       candidate = bestRotationAbout(candidate, reference.linear(), c);
     }
     const float angle = rotationAngle(candidate.linear(), reference.linear());
@@ -48,14 +48,19 @@ Eigen::Isometry3f nearestEquivalentPose(const Eigen::Isometry3f& pose,
   return best;
 }
 
-Eigen::Isometry3f SymmetricPoseTracker::track(size_t object, const Eigen::Isometry3f& pose,
-                                              const ObjectSymmetries& symmetries) {
-  const auto previous = previous_.find(object);
-  const Eigen::Isometry3f chosen = previous == previous_.end() || symmetries.empty()
-                                       ? pose
-                                       : nearestEquivalentPose(pose, previous->second, symmetries);
-  previous_[object] = chosen;
-  return chosen;
+Eigen::Isometry3f canonicalPose(const Eigen::Isometry3f& pose, const ObjectSymmetries& symmetries) {
+  return symmetries.empty()
+             ? pose
+             : nearestEquivalentPose(pose, Eigen::Isometry3f::Identity(), symmetries);
 }
 
-}  // namespace stocs_ros
+bool isSymmetry(const Eigen::Isometry3f& motion, const ObjectSymmetries& symmetries,
+                const Eigen::Vector3f& centre, float angle, float distance) {
+  if (symmetries.empty()) return false;
+  const Eigen::Isometry3f equivalent =
+      nearestEquivalentPose(motion, Eigen::Isometry3f::Identity(), symmetries);
+  return rotationAngle(equivalent.linear(), Eigen::Matrix3f::Identity()) < angle &&
+         (equivalent * centre - centre).norm() < distance;
+}
+
+}  // namespace stocs

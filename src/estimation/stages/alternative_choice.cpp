@@ -1,0 +1,194 @@
+#include "alternative_choice.h"
+
+#include <algorithm>
+
+#include "stocs/estimation/stages/pose_covariance.h"
+#include "stocs/geometry/knn_index.h"
+
+namespace stocs {
+namespace {
+
+const float kSymmetryAngle = 5.0f * static_cast<float>(M_PI) / 180.0f;
+/// Two refined candidates closer in rotation are one pose.
+const float kDistinctAngle = 15.0f * static_cast<float>(M_PI) / 180.0f;
+
+/// A candidate pose of one instance, refined and judged.
+struct Candidate {
+  Eigen::Isometry3f pose;
+  float shift = 0;  ///< of the shape alternative it came from (0: the instance itself)
+  LcpDetail lcp;
+  float free = 0;         ///< share of the visible surface in free space
+  float unexplained = 0;  ///< share of the segment (by network probability) far from the surface
+  float judgement = 0;    ///< higher is better
+};
+
+constexpr size_t kExplainedPoints = 300;  // segment points checked, an even subsample
+
+/// What the data says of a candidate pose: the segment's shape under it (objective), the measured
+/// surface (free space), and the segment points it leaves unexplained (a handle seen where the
+/// pose has none).
+class CandidateMeasure {
+ public:
+  CandidateMeasure(const SoftSegment& segment, const RefinementContext& context,
+                   const FrameEvidence& evidence)
+      : segment_(segment),
+        context_(context),
+        evidence_(evidence),
+        model_index_(context.model.points),
+        reach_(context.model.sampling_radius + context.scorer.params().distance) {
+    const size_t stride = std::max<size_t>(1, segment.size() / kExplainedPoints);
+    for (size_t i = 0; i < segment.size(); i += stride) checked_.push_back(i);
+  }
+
+  void operator()(Candidate& c, int region) const {
+    c.lcp = context_.scorer.detail(context_.model, c.pose, region);
+    if (evidence_.surface) c.free = evidence_.surface->violation(context_.model, c.pose);
+    c.unexplained = unexplained(c.pose, region);
+  }
+
+ private:
+  float unexplained(const Eigen::Isometry3f& pose, int region) const {
+    const Eigen::Isometry3f to_model = pose.inverse();
+    std::vector<size_t> nearest;
+    std::vector<float> squared;
+    double far = 0, all = 0;
+    for (const size_t i : checked_) {
+      if (region >= 0 && !segment_.region.empty() && segment_.region[i] != region) continue;
+      model_index_.knn(to_model * segment_.points[i], 1, nearest, squared);
+      const float weight = segment_.confidence[i];
+      all += weight;
+      if (nearest.empty() || squared[0] > reach_ * reach_) far += weight;
+    }
+    return all > 0 ? static_cast<float>(far / all) : 0;
+  }
+
+  const SoftSegment& segment_;
+  const RefinementContext& context_;
+  const FrameEvidence& evidence_;
+  const KnnIndex model_index_;
+  const float reach_;
+  std::vector<size_t> checked_;
+};
+
+/// The alternatives of `model` that are not declared symmetries (those are the same pose).
+std::vector<const ShapeAlternative*> distinctAlternatives(const PreparedModel& model) {
+  std::vector<const ShapeAlternative*> out;
+  const Eigen::Vector3f centre = sampleCentre(model.model);
+  const float distance = model.model.sampling_radius;
+  for (const ShapeAlternative& a : model.shape_alternatives) {
+    if (!isSymmetry(a.motion, model.symmetries, centre, kSymmetryAngle, distance)) {
+      out.push_back(&a);
+    }
+  }
+  return out;
+}
+
+/// `c` refined by ICP from its pose; adds the steps taken to `steps`.
+void refine(Candidate& c, int region, const RefinementContext& context, long& steps) {
+  if (!context.icp) return;
+  IcpRun run(c.pose);
+  context.icp->iterate(context.model, run, context.icp->params().iterations, region,
+                       &context.scorer);
+  steps += run.iterations;
+  c.pose = run.pose;
+}
+
+/// The candidates' judgements: objective relative to the best's, less the shares in free space and
+/// left unexplained.
+void judge(std::vector<Candidate>& candidates) {
+  float best = 0;
+  for (const Candidate& c : candidates) best = std::max(best, c.lcp.score);
+  for (Candidate& c : candidates) {
+    c.judgement = (best > 0 ? c.lcp.score / best : 0) - c.free - c.unexplained;
+  }
+}
+
+/// The motion (model frame) from `from` to `to`, as a shape alternative.
+ShapeAlternative motionBetween(const Eigen::Isometry3f& from, const Candidate& to) {
+  ShapeAlternative a;
+  a.motion = from.inverse() * to.pose;
+  const Eigen::AngleAxisf rotation(a.motion.linear());
+  a.axis = rotation.axis();
+  a.angle = rotation.angle();
+  a.shift = to.shift;
+  return a;
+}
+
+/// The candidate to keep: the instance itself unless an alternative is judged better by at least
+/// kAlternativeTie (switching needs evidence; in a tie StoCS's own ranking stands).
+const Candidate& chosen(const std::vector<Candidate>& candidates) {
+  const auto best = std::max_element(
+      candidates.begin(), candidates.end(),
+      [](const Candidate& a, const Candidate& b) { return a.judgement < b.judgement; });
+  return best->judgement - candidates.front().judgement >= kAlternativeTie ? *best
+                                                                           : candidates.front();
+}
+
+/// The candidates that fit as well as `best`, as motions from it: each a pose of its own (not
+/// `best` again after refinement, not a declared symmetry of it, not one listed before).
+std::vector<ShapeAlternative> equallyFitting(const std::vector<Candidate>& candidates,
+                                             const Candidate& best, const PreparedModel& model) {
+  std::vector<ShapeAlternative> out;
+  const Eigen::Vector3f centre = sampleCentre(model.model);
+  const float distance = model.model.sampling_radius;
+  for (const Candidate& c : candidates) {
+    if (best.judgement - c.judgement >= kAlternativeTie) continue;
+    const ShapeAlternative a = motionBetween(best.pose, c);
+    if (a.angle < kDistinctAngle) continue;  // the same pose
+    if (isSymmetry(a.motion, model.symmetries, centre, kDistinctAngle, distance)) continue;
+    const bool listed = std::any_of(out.begin(), out.end(), [&](const ShapeAlternative& o) {
+      return Eigen::AngleAxisf(o.motion.linear().transpose() * a.motion.linear()).angle() <
+             kDistinctAngle;
+    });
+    if (!listed) out.push_back(a);
+  }
+  return out;
+}
+
+void chooseFor(InstancePose& instance, const PreparedModel& model,
+               const std::vector<const ShapeAlternative*>& alternatives,
+               const RefinementContext& context, const CandidateMeasure& measure, int threads,
+               long& steps) {
+  std::vector<Candidate> candidates{{instance.pose}};
+  for (const ShapeAlternative* a : alternatives) {
+    candidates.push_back({instance.pose * a->motion, a->shift});
+  }
+  long taken = 0;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : taken)
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (k > 0) refine(candidates[k], instance.region, context, taken);  // k = 0 is refined
+    measure(candidates[k], instance.region);
+  }
+  steps += taken;
+  judge(candidates);
+  const Candidate& best = chosen(candidates);
+  instance.ambiguous = equallyFitting(candidates, best, model);
+  if (&best != &candidates.front()) {
+    instance.pose = best.pose;
+    instance.lcp = best.lcp;
+    instance.score = best.lcp.score;
+    instance.refined = true;
+  }
+  if (&best != &candidates.front() || !instance.ambiguous.empty()) {
+    std::vector<NearSymmetry> spread = context.near_symmetries;
+    for (const ShapeAlternative& a : instance.ambiguous)
+      spread.push_back({a.axis, a.angle, a.shift});
+    instance.covariance = poseCovariance(context.model, context.icp, instance.pose, instance.region,
+                                         &context.scorer, spread);
+  }
+}
+
+}  // namespace
+
+void chooseAmongAlternatives(std::vector<InstancePose>& instances, const PreparedModel& model,
+                             const SoftSegment& segment, const RefinementContext& context,
+                             const FrameEvidence& evidence, int threads, long& steps) {
+  const std::vector<const ShapeAlternative*> alternatives = distinctAlternatives(model);
+  if (alternatives.empty()) return;
+  const CandidateMeasure measure(segment, context, evidence);
+  for (InstancePose& instance : instances) {
+    chooseFor(instance, model, alternatives, context, measure, threads, steps);
+  }
+}
+
+}  // namespace stocs

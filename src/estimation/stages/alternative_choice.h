@@ -1,0 +1,30 @@
+#pragma once
+// Which way the object faces: a pose and its shape alternatives (near_symmetries.h) fit the
+// segment's shape about equally, so each is refined and judged on what tells them apart, and the
+// best is kept. Where nothing does, the instance names the alternatives that fit as well.
+
+#include <vector>
+
+#include "candidate_refinement.h"
+#include "stocs/estimation/pose_estimate.h"
+#include "stocs/estimation/stages/frame_evidence.h"
+#include "stocs/model/model_cache.h"
+
+namespace stocs {
+
+/// Two alternatives whose judgements differ by less than this fit the data equally: a share of the
+/// visible surface, above the noise of refinement (a few percent).
+constexpr float kAlternativeTie = 0.03f;
+
+/// Each instance against its model's shape alternatives (less the declared symmetries): every
+/// alternative pose refined by ICP and judged by the segment's shape under it (objective relative
+/// to the best alternative's), less the share of its visible surface in free space and the share
+/// of the segment it leaves unexplained. An alternative
+/// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
+/// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
+/// and its covariance spans them. Adds the ICP steps taken to `steps`.
+void chooseAmongAlternatives(std::vector<InstancePose>& instances, const PreparedModel& model,
+                             const SoftSegment& segment, const RefinementContext& context,
+                             const FrameEvidence& evidence, int threads, long& steps);
+
+}  // namespace stocs
