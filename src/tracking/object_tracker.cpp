@@ -102,6 +102,8 @@ class ObjectTracker::Step {
     for (size_t k = 0; k < tracks.size(); ++k) {
       if (tracks[k].state == TrackState::kLost) continue;
       InstancePose pose = follower_->follow(predicted[k]);
+      // About a symmetry the data leaves the pose free: it keeps the predicted equivalent.
+      pose.pose = nearestEquivalentPose(pose.pose, predicted[k], in_.model->symmetries);
       if (!pose.accepted) {
         attempts_[k] = std::move(pose);
         failed = true;

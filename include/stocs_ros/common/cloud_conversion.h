@@ -1,6 +1,7 @@
 #pragma once
 // Depth input messages to the core's organized cloud, and back for the scene publisher:
-// sensor_msgs/PointCloud2 (organized, float32 x y z, any other fields ignored) and a depth image
+// sensor_msgs/PointCloud2 (organized, float32 x y z, and a packed rgb field for colour; any other
+// fields ignored) and a depth image
 // with its camera_info (REP 118: 16UC1 in millimetres, 32FC1 in metres). Errors are
 // stocs::InputError naming the field or size at fault.
 
@@ -20,6 +21,10 @@ namespace stocs_ros {
 /// The organized cloud (metres, optical frame; NaN or z <= 0 for no measurement). Rejects empty
 /// or unorganized (height 1) clouds, missing or non-float32 x/y/z fields and truncated data.
 stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg);
+
+/// The cloud's packed `rgb` (or `rgba`) field (PCL's layout) as a CV_8UC3 BGR image the cloud's
+/// size; empty without such a field. Call after cloudFromMsg accepted the cloud's layout.
+cv::Mat colourFromCloudMsg(const sensor_msgs::PointCloud2& msg);
 
 /// Pinhole intrinsics from K. Rejects a non-positive focal length, an empty image size, and
 /// binning or a region of interest (the depth image must be the full, unbinned image).

@@ -57,6 +57,30 @@ stocs::OrganizedCloud cloudFromMsg(const sensor_msgs::PointCloud2& msg) {
   return cloud;
 }
 
+cv::Mat colourFromCloudMsg(const sensor_msgs::PointCloud2& msg) {
+  const auto field = std::find_if(
+      msg.fields.begin(), msg.fields.end(),
+      [](const sensor_msgs::PointField& f) { return f.name == "rgb" || f.name == "rgba"; });
+  if (field == msg.fields.end()) return {};
+  const bool packed = field->datatype == sensor_msgs::PointField::FLOAT32 ||
+                      field->datatype == sensor_msgs::PointField::UINT32;
+  if (!packed || uint64_t{field->offset} + 4 > msg.point_step) {
+    throw InputError(
+        fmt::format("cloud field '{}' is not a packed 4-byte colour within its point "
+                    "step",
+                    field->name));
+  }
+  cv::Mat bgr(static_cast<int>(msg.height), static_cast<int>(msg.width), CV_8UC3);
+  for (uint32_t v = 0; v < msg.height; ++v) {
+    for (uint32_t u = 0; u < msg.width; ++u) {
+      // Packed 0x00RRGGBB, little-endian: the bytes are blue, green, red as OpenCV keeps them.
+      const uint8_t* point = &msg.data[static_cast<size_t>(v) * msg.row_step + u * msg.point_step];
+      std::memcpy(bgr.ptr<uint8_t>(static_cast<int>(v)) + 3 * u, point + field->offset, 3);
+    }
+  }
+  return bgr;
+}
+
 stocs::CameraIntrinsics intrinsicsFromCameraInfo(const sensor_msgs::CameraInfo& info) {
   if (info.binning_x > 1 || info.binning_y > 1 || info.roi.width != 0 || info.roi.height != 0) {
     throw InputError(
