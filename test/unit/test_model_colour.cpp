@@ -1,7 +1,11 @@
 // Model colour from files (PLY and PCD vertex colours, OBJ materials and textures baked into
 // vertex colours), through model preparation (sample colours) and the model cache.
+#include <assimp/scene.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -94,23 +98,18 @@ const char kQuadObj[] =
     "v 0 0 0\nv 100 0 0\nv 100 50 0\nv 0 50 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
     "f 1/1 2/2 3/3 4/4\n";
 
-TEST(ModelColour, ObjMaterialColourAndTextureBakedIntoVertexColours) {
-  const fs::path dir = test::scratchDir("colour_obj");
-  writeText(dir / "plain.obj", kQuadObj);
-  EXPECT_FALSE(loadMesh((dir / "plain.obj").string(), 0.001f).hasColour());
-  writeText(dir / "red.obj", std::string("mtllib red.mtl\nusemtl red\n") + kQuadObj);
-  writeText(dir / "red.mtl", "newmtl red\nKd 1 0 0\n");
-  const MeshData red = loadMesh((dir / "red.obj").string(), 0.001f);
-  ASSERT_TRUE(red.hasColour());
-  for (const Rgba& c : red.colours) EXPECT_EQ(c, Rgba(255, 0, 0, 255));
-
-  // Left half red, right half green (BGR image), through the OBJ's material.
-  cv::Mat texture(8, 16, CV_8UC3, cv::Scalar(0, 0, 255));
+/// An OBJ quad textured through its material: left half red, right half green.
+fs::path writeLabelObj(const fs::path& dir) {
+  cv::Mat texture(8, 16, CV_8UC3, cv::Scalar(0, 0, 255));  // BGR
   texture.colRange(8, 16).setTo(cv::Scalar(0, 255, 0));
-  ASSERT_TRUE(cv::imwrite((dir / "label.png").string(), texture));
+  EXPECT_TRUE(cv::imwrite((dir / "label.png").string(), texture));
   writeText(dir / "label.mtl", "newmtl label\nKd 1 1 1\nmap_Kd label.png\n");
   writeText(dir / "label.obj", std::string("mtllib label.mtl\nusemtl label\n") + kQuadObj);
-  const MeshData baked = loadMesh((dir / "label.obj").string(), 0.001f);
+  return dir / "label.obj";
+}
+
+/// Expects writeLabelObj's quad subdivided and its texture baked into vertex colours.
+void expectLabelBaked(const MeshData& baked) {
   // Edges up to 1 % of the 112 mm diagonal: about 100 x 100 cells per triangle.
   EXPECT_GT(baked.triangles.size(), 10000u);
   ASSERT_EQ(baked.colours.size(), baked.vertices.size());
@@ -122,10 +121,40 @@ TEST(ModelColour, ObjMaterialColourAndTextureBakedIntoVertexColours) {
       ASSERT_EQ(baked.colours[i], Rgba(0, 255, 0, 255)) << x;
     }
   }
+}
+
+TEST(ModelColour, ObjMaterialColourAndTextureBakedIntoVertexColours) {
+  const fs::path dir = test::scratchDir("colour_obj");
+  writeText(dir / "plain.obj", kQuadObj);
+  EXPECT_FALSE(loadMesh((dir / "plain.obj").string(), 0.001f).hasColour());
+  writeText(dir / "red.obj", std::string("mtllib red.mtl\nusemtl red\n") + kQuadObj);
+  writeText(dir / "red.mtl", "newmtl red\nKd 1 0 0\n");
+  const MeshData red = loadMesh((dir / "red.obj").string(), 0.001f);
+  ASSERT_TRUE(red.hasColour());
+  for (const Rgba& c : red.colours) EXPECT_EQ(c, Rgba(255, 0, 0, 255));
+
+  const fs::path label = writeLabelObj(dir);
+  expectLabelBaked(loadMesh(label.string(), 0.001f));
   writeText(dir / "lost.mtl", "newmtl lost\nmap_Kd lost.png\n");
   writeText(dir / "lost.obj", std::string("mtllib lost.mtl\nusemtl lost\n") + kQuadObj);
   EXPECT_NE(errorOf(dir / "lost.obj").find("lost.png: missing or unreadable"), std::string::npos)
       << errorOf(dir / "lost.obj");
+}
+
+// glTF and GLB through assimp's exporter: the texture as a file beside the glTF, or inside the GLB.
+TEST(ModelColour, GltfAndGlbTexturesAreBakedAsTheObjs) {
+  const fs::path dir = test::scratchDir("colour_gltf");
+  const fs::path label = writeLabelObj(dir);
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(label.string(), 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  for (const char* format : {"gltf2", "glb2"}) {
+    const fs::path file = dir / (std::string("label.") + (format[2] == 'b' ? "glb" : "gltf"));
+    Assimp::Exporter exporter;
+    ASSERT_EQ(exporter.Export(scene, format, file.string()), aiReturn_SUCCESS)
+        << exporter.GetErrorString();
+    expectLabelBaked(loadMesh(file.string(), 0.001f));
+  }
 }
 
 TEST(ModelColour, SamplesCarryTheInterpolatedColourInTheUncolouredOrder) {
