@@ -61,7 +61,9 @@ if(STOCS_CORE_TESTS)
     target_link_libraries(test_baselines stocs_methods_open3d OpenMP::OpenMP_CXX)
   endif()
 endif()
-# test_mesh_formats writes its format files with assimp's exporter.
-if(TARGET test_mesh_formats)
-  target_link_libraries(test_mesh_formats assimp::assimp)
-endif()
+# test_mesh_formats and test_model_colour write format files with assimp's exporter.
+foreach(name test_mesh_formats test_model_colour)
+  if(TARGET ${name})
+    target_link_libraries(${name} assimp::assimp)
+  endif()
+endforeach()

@@ -7,6 +7,7 @@
 //   estimator.addObject("cat", "models/obj_000006.ply");  // in mm, as BOP models
 //   stocs::Frame frame = stocs::Frame::fromDepth(depth_mm, camera, 0.001);
 //   frame.probabilities["cat"] = probability;             // CV_32FC1 in [0, 1]
+//   frame.colour = bgr;              // optional: CV_8UC3, registered with the depth image
 //   for (const stocs::ObjectResult& r : estimator.estimate(frame))
 //     if (r.estimate.found) use(r.name, r.estimate.best().pose);  // model to camera, metres
 

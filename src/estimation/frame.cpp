@@ -22,6 +22,21 @@ const cv::Mat& probabilityOf(const Frame& frame, const std::string& name) {
   return it->second;
 }
 
+/// The frame's colour image, checked against the cloud's size and type; null when it has none.
+const cv::Mat* colourOf(const Frame& frame) {
+  const cv::Mat& colour = frame.colour;
+  if (colour.empty()) return nullptr;
+  if (colour.type() != CV_8UC3) {
+    throw InputError(
+        fmt::format("colour image must be 8-bit BGR (CV_8UC3), not type {}", colour.type()));
+  }
+  if (colour.cols != frame.cloud.width || colour.rows != frame.cloud.height) {
+    throw InputError(fmt::format("colour image {}x{} does not fit the {}x{} cloud", colour.cols,
+                                 colour.rows, frame.cloud.width, frame.cloud.height));
+  }
+  return &colour;
+}
+
 }  // namespace
 
 Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
@@ -48,6 +63,7 @@ ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
   input.camera = &camera;
   input.probability = &probabilityOf(frame, object.name);
   input.boundary = frame.boundary.empty() ? nullptr : &frame.boundary;
+  input.colour = colourOf(frame);
   input.model = object.model;
   input.params = &params;
   return input;

@@ -18,6 +18,18 @@ double meshArea(const MeshData& mesh) {
   return area;
 }
 
+Colour interpolateColour(const MeshData& mesh, const Eigen::Vector3i& t, const Eigen::Vector3f& w) {
+  Colour sum = Colour::Zero();
+  float known = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Colour c = toColour(mesh.colours[t[k]]);
+    if (!isKnown(c)) continue;
+    sum += w[k] * c;
+    known += w[k];
+  }
+  return known >= 0.5f ? Colour(sum / known) : unknownColour();
+}
+
 OrientedPoints sampleMeshSurface(const MeshData& mesh, size_t count, Rng& rng) {
   OrientedPoints out;
   std::vector<double> cumulative;
@@ -52,6 +64,9 @@ OrientedPoints sampleMeshSurface(const MeshData& mesh, size_t count, Rng& rng) {
     const Eigen::Vector3f& a = mesh.vertices[t[0]];
     out.points.push_back(a + r1 * (mesh.vertices[t[1]] - a) + r2 * (mesh.vertices[t[2]] - a));
     out.normals.push_back(face_normals[k]);
+    if (mesh.hasColour()) {
+      out.colours.push_back(interpolateColour(mesh, t, Eigen::Vector3f(1 - r1 - r2, r1, r2)));
+    }
   }
   return out;
 }

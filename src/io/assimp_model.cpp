@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "assimp_colour.h"
 #include "model_file_check.h"
 #include "stocs/util/error.h"
 
@@ -57,9 +58,11 @@ void appendMesh(const std::string& path, const aiMesh& mesh, const aiMatrix4x4& 
   }
 }
 
-/// Every node's meshes, depth first without recursion (a file may nest nodes deeply).
+/// Every node's meshes, depth first without recursion (a file may nest nodes deeply), and their
+/// colour (assimp_colour.h).
 MeshData mergeNodes(const std::string& path, const aiScene& scene) {
   MeshData out;
+  SceneColours colours(path, scene);
   std::vector<std::pair<const aiNode*, aiMatrix4x4>> pending = {
       {scene.mRootNode, rootWithoutRotation(*scene.mRootNode)}};
   while (!pending.empty()) {
@@ -71,11 +74,13 @@ MeshData mergeNodes(const std::string& path, const aiScene& scene) {
                                            node->mMeshes[i], scene.mNumMeshes));
       }
       appendMesh(path, *scene.mMeshes[node->mMeshes[i]], transform, out);
+      colours.append(*scene.mMeshes[node->mMeshes[i]]);
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c) {
       pending.emplace_back(node->mChildren[c], transform * node->mChildren[c]->mTransformation);
     }
   }
+  colours.apply(out);
   return out;
 }
 

@@ -15,8 +15,9 @@ bool isAssimpFormat(const std::string& ext);
 /// `path` (`ext` its lower-case extension), each placed by its node's transform, the way rviz
 /// places them: the root node's rotation is dropped (assimp's turn of a COLLADA Z_UP file to Y-up)
 /// and its scale (a COLLADA <unit>) and translation kept. Polygons are triangulated; points and
-/// lines add vertices only. Throws InputError "model <path>: ..." for a file assimp cannot read, an
-/// incomplete scene or more vertices than a model can hold.
+/// lines add vertices only. Colours: assimp_colour.h (textured triangles are subdivided). Throws
+/// InputError "model <path>: ..." for a file assimp cannot read, an incomplete scene or more
+/// vertices than a model can hold.
 MeshData readAssimpModel(const std::string& path, const std::string& ext);
 
 }  // namespace stocs::detail

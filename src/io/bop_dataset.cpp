@@ -221,6 +221,14 @@ fs::path BopDataset::depthPath(int scene_id, int im_id) const {
 fs::path BopDataset::rgbPath(int scene_id, int im_id) const {
   return sceneDir(scene_id) / "rgb" / fmt::format("{:06d}.png", im_id);
 }
+fs::path BopDataset::colourPath(int scene_id, int im_id) const {
+  std::error_code ec;
+  for (const char* extension : {".png", ".jpg"}) {
+    fs::path file = rgbPath(scene_id, im_id).replace_extension(extension);
+    if (fs::exists(file, ec)) return file;
+  }
+  return {};
+}
 fs::path BopDataset::probabilityPath(int scene_id, int im_id, int obj_id) const {
   return sceneDir(scene_id) / "prob" / fmt::format("{:06d}_{:06d}.png", im_id, obj_id);
 }
@@ -265,6 +273,18 @@ cv::Mat BopDataset::loadBoundary(int scene_id, int im_id) const {
         fmt::format("{}: boundary map must be a single-channel 8-bit PNG", file.string()));
   }
   return boundary;
+}
+
+cv::Mat BopDataset::loadColour(int scene_id, int im_id, cv::Size size) const {
+  const fs::path file = colourPath(scene_id, im_id);
+  if (file.empty()) return {};
+  cv::Mat bgr = cv::imread(file.string(), cv::IMREAD_COLOR);
+  if (bgr.empty()) throw InputError(fmt::format("{}: not a readable image", file.string()));
+  if (bgr.size() != size) {
+    throw InputError(fmt::format("{}: colour image is {}x{} but the depth image is {}x{}",
+                                 file.string(), bgr.cols, bgr.rows, size.width, size.height));
+  }
+  return bgr;
 }
 
 }  // namespace stocs

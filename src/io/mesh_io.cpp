@@ -80,6 +80,10 @@ MeshData loadMesh(const std::string& path, float unit_scale) {
       throw InputError(fmt::format("model {}: vertex {} has a non-finite coordinate", path, i));
     }
   }
+  if (out.hasColour() && out.colours.size() != out.vertices.size()) {
+    throw InputError(fmt::format("model {}: {} vertex colours for {} vertices", path,
+                                 out.colours.size(), out.vertices.size()));
+  }
   const float diameter = pointSetDiameter(out.vertices);
   if (diameter < 1e-3f || diameter > 10.0f) {
     throw InputError(fmt::format(

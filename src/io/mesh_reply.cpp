@@ -29,10 +29,11 @@ bool writeKind(int fd, MeshReply kind) {
 }  // namespace
 
 bool writeMeshReply(int fd, const MeshData& mesh) {
-  const uint64_t counts[2] = {mesh.vertices.size(), mesh.triangles.size()};
+  const uint64_t counts[3] = {mesh.vertices.size(), mesh.triangles.size(), mesh.colours.size()};
   return writeKind(fd, MeshReply::kMesh) && writeAll(fd, counts, sizeof(counts)) &&
          writeAll(fd, mesh.vertices.data(), mesh.vertices.size() * sizeof(Eigen::Vector3f)) &&
-         writeAll(fd, mesh.triangles.data(), mesh.triangles.size() * sizeof(Eigen::Vector3i));
+         writeAll(fd, mesh.triangles.data(), mesh.triangles.size() * sizeof(Eigen::Vector3i)) &&
+         writeAll(fd, mesh.colours.data(), mesh.colours.size() * sizeof(mesh.colours[0]));
 }
 
 bool writeErrorReply(int fd, const std::string& message) {
@@ -40,24 +41,28 @@ bool writeErrorReply(int fd, const std::string& message) {
 }
 
 bool decodeMesh(const std::vector<char>& body, MeshData& mesh) {
-  uint64_t counts[2] = {0, 0};
+  uint64_t counts[3] = {0, 0, 0};
   if (body.size() < sizeof(counts)) return false;
   std::memcpy(counts, body.data(), sizeof(counts));
+  const size_t sizes[3] = {sizeof(Eigen::Vector3f), sizeof(Eigen::Vector3i),
+                           sizeof(mesh.colours[0])};
   // Counts from a reader that misbehaved: compared by division, as their products may overflow.
-  if (counts[0] > body.size() / sizeof(Eigen::Vector3f) ||
-      counts[1] > body.size() / sizeof(Eigen::Vector3i)) {
-    return false;
+  size_t total = sizeof(counts);
+  for (int k = 0; k < 3; ++k) {
+    if (counts[k] > body.size() / sizes[k]) return false;
+    total += counts[k] * sizes[k];
   }
-  const size_t vertex_bytes = counts[0] * sizeof(Eigen::Vector3f);
-  if (body.size() != sizeof(counts) + vertex_bytes + counts[1] * sizeof(Eigen::Vector3i)) {
-    return false;
-  }
+  if (body.size() != total) return false;
   mesh.vertices.resize(counts[0]);
   mesh.triangles.resize(counts[1]);
-  // Plain arrays of floats and ints, as the reader's vectors held them.
-  std::memcpy(static_cast<void*>(mesh.vertices.data()), body.data() + sizeof(counts), vertex_bytes);
-  std::memcpy(static_cast<void*>(mesh.triangles.data()),
-              body.data() + sizeof(counts) + vertex_bytes, counts[1] * sizeof(Eigen::Vector3i));
+  mesh.colours.resize(counts[2]);
+  // Plain arrays of floats, ints and bytes, as the reader's vectors held them.
+  const char* at = body.data() + sizeof(counts);
+  void* arrays[3] = {mesh.vertices.data(), mesh.triangles.data(), mesh.colours.data()};
+  for (int k = 0; k < 3; ++k) {
+    std::memcpy(arrays[k], at, counts[k] * sizes[k]);
+    at += counts[k] * sizes[k];
+  }
   return true;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // What the mesh reader (src/mesh_reader, started by child_reader.cpp) sends back through its pipe:
-// one byte saying what follows, then the mesh as plain arrays (vertex and triangle counts, their
-// floats and ints) or the message of the reader's InputError.
+// one byte saying what follows, then the mesh as plain arrays (vertex, triangle and colour counts,
+// their floats, ints and bytes) or the message of the reader's InputError.
 
 #include <string>
 #include <vector>

@@ -13,6 +13,7 @@
 #include <pcl/point_types.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "model_file_check.h"
 #include "stocs/util/error.h"
@@ -53,6 +54,39 @@ pcl::PolygonMesh readWithPcl(const std::string& path, const std::string& ext) {
   return mesh;
 }
 
+/// The field named `name`, or null.
+const pcl::PCLPointField* findField(const pcl::PCLPointCloud2& cloud, const std::string& name) {
+  const auto it = std::find_if(cloud.fields.begin(), cloud.fields.end(),
+                               [&](const pcl::PCLPointField& f) { return f.name == name; });
+  return it == cloud.fields.end() ? nullptr : &*it;
+}
+
+/// Per-point RGBA from the packed `rgba` field (alpha as stored) or `rgb` field (alpha 255), as
+/// PCL reads a PLY's red, green, blue (and alpha) properties and a PCD's rgb(a) field; empty when
+/// the cloud has neither.
+std::vector<Rgba> packedColours(const std::string& path, const pcl::PCLPointCloud2& cloud) {
+  const pcl::PCLPointField* rgba = findField(cloud, "rgba");
+  const pcl::PCLPointField* field = rgba ? rgba : findField(cloud, "rgb");
+  if (!field) return {};
+  const uint64_t rows = cloud.height, cols = cloud.width;
+  if (pcl::getFieldSize(field->datatype) != 4 || field->count > 1 ||
+      uint64_t{field->offset} + 4 > cloud.point_step || cloud.data.size() < rows * cloud.row_step ||
+      cloud.row_step < cols * cloud.point_step) {
+    throw InputError(
+        fmt::format("model {}: colour field '{}' is not 4 bytes per point", path, field->name));
+  }
+  std::vector<Rgba> colours;
+  colours.reserve(rows * cols);
+  for (uint64_t r = 0; r < rows; ++r) {
+    for (uint64_t c = 0; c < cols; ++c) {
+      uint32_t v = 0;  // 0xAARRGGBB, as PCL packs it
+      std::memcpy(&v, &cloud.data[r * cloud.row_step + c * cloud.point_step + field->offset], 4);
+      colours.emplace_back(v >> 16 & 0xff, v >> 8 & 0xff, v & 0xff, rgba ? v >> 24 : 0xff);
+    }
+  }
+  return colours;
+}
+
 }  // namespace
 
 MeshData readPclModel(const std::string& path, const std::string& ext) {
@@ -70,6 +104,7 @@ MeshData readPclModel(const std::string& path, const std::string& ext) {
   MeshData out;
   out.vertices.reserve(xyz.size());
   for (const pcl::PointXYZ& p : xyz) out.vertices.push_back(p.getVector3fMap());
+  out.colours = packedColours(path, mesh.cloud);
   const int nv = static_cast<int>(out.vertices.size());
   for (size_t f = 0; f < mesh.polygons.size(); ++f) {
     const auto& idx = mesh.polygons[f].vertices;

@@ -14,6 +14,13 @@ void writePly(const std::filesystem::path& file, const MeshData& mesh, float sca
       "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty "
       "float z\n",
       mesh.vertices.size());
+  if (mesh.hasColour()) {
+    if (mesh.colours.size() != mesh.vertices.size()) {
+      throw InputError(fmt::format("{}: {} vertex colours for {} vertices", file.string(),
+                                   mesh.colours.size(), mesh.vertices.size()));
+    }
+    text += "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n";
+  }
   if (mesh.isMesh()) {
     text += fmt::format("element face {}\nproperty list uchar int vertex_indices\n",
                         mesh.triangles.size());
@@ -25,8 +32,15 @@ void writePly(const std::filesystem::path& file, const MeshData& mesh, float sca
     if (v == 0) v = 0;  // never print "-0"
     return fmt::format("{:.{}f}", v, decimals);
   };
-  for (const Eigen::Vector3f& v : mesh.vertices)
-    text += number(v.x()) + ' ' + number(v.y()) + ' ' + number(v.z()) + '\n';
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Eigen::Vector3f& v = mesh.vertices[i];
+    text += number(v.x()) + ' ' + number(v.y()) + ' ' + number(v.z());
+    if (mesh.hasColour()) {
+      const Eigen::Vector4i c = mesh.colours[i].cast<int>();  // numbers, not characters
+      text += fmt::format(" {} {} {} {}", c[0], c[1], c[2], c[3]);
+    }
+    text += '\n';
+  }
   for (const Eigen::Vector3i& t : mesh.triangles)
     text += fmt::format("3 {} {} {}\n", t[0], t[1], t[2]);
   std::ofstream out(file, std::ios::binary);

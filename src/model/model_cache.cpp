@@ -45,18 +45,20 @@ void appendBytes(std::string& bytes, const std::vector<T>& values) {
   bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
 }
 
-/// What an entry's key hashes of the model: the file's bytes and, for a glTF, whose buffers are
-/// usually files of their own (a .bin beside it), also the geometry read from it, so that a
-/// changed buffer changes the key. Every other format holds its geometry in the one file.
+/// What an entry's key hashes of the model: the file's bytes and, for the formats that refer to
+/// files of their own (a glTF's .bin buffers, an OBJ's .mtl, their and a COLLADA file's
+/// textures), also the geometry and colours read from it, so that a changed buffer, material or
+/// texture changes the key. PLY, PCD, STL and GLB hold everything in the one file.
 std::string modelKeyBytes(const std::string& model_file, float unit_scale) {
   std::string bytes = readFileBytes(model_file);
   std::string ext = std::filesystem::path(model_file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  if (ext != ".gltf") return bytes;
+  if (ext != ".gltf" && ext != ".obj" && ext != ".dae") return bytes;
   const MeshData mesh = loadMesh(model_file, unit_scale);
   appendBytes(bytes, mesh.vertices);
   appendBytes(bytes, mesh.triangles);
+  appendBytes(bytes, mesh.colours);
   return bytes;
 }
 
@@ -78,7 +80,9 @@ void writeVectors(std::ostream& out, const std::vector<Eigen::Vector3f>& v) {
             static_cast<std::streamsize>(n * sizeof(v[0])));
 }
 
-std::vector<Eigen::Vector3f> readVectors(std::istream& in) {
+/// Vectors written by writeVectors, each accepted by `valid`.
+template <class Valid>
+std::vector<Eigen::Vector3f> readVectors(std::istream& in, Valid valid) {
   uint64_t n = 0;
   if (!in.read(reinterpret_cast<char*>(&n), sizeof n) || n > kMaxModelSamples) {
     throw InputError("model sample count is missing or out of range");
@@ -88,9 +92,19 @@ std::vector<Eigen::Vector3f> readVectors(std::istream& in) {
     throw InputError("model samples are truncated");
   }
   for (const Eigen::Vector3f& x : v) {
-    if (!x.allFinite()) throw InputError("model samples hold a non-finite value");
+    if (!valid(x)) throw InputError("model samples hold an invalid value");
   }
   return v;
+}
+
+std::vector<Eigen::Vector3f> readVectors(std::istream& in) {
+  return readVectors(in, [](const Eigen::Vector3f& x) { return x.allFinite(); });
+}
+
+/// Colours: unknown, or every component in [0, 1].
+std::vector<Colour> readColours(std::istream& in) {
+  return readVectors(
+      in, [](const Colour& c) { return !isKnown(c) || (c.minCoeff() >= 0 && c.maxCoeff() <= 1); });
 }
 
 std::string serialise(const PreparedModel& m) {
@@ -99,6 +113,7 @@ std::string serialise(const PreparedModel& m) {
   out.write(reinterpret_cast<const char*>(&m.model.sampling_radius), sizeof(float));
   writeVectors(out, m.model.points);
   writeVectors(out, m.model.normals);
+  writeVectors(out, m.model.colours);
   m.ppf_map.write(out);
   return out.str();
 }
@@ -117,6 +132,10 @@ PreparedModel deserialise(const std::string& payload) {
   m.model.normals = readVectors(in);
   if (m.model.points.size() != m.model.normals.size() || m.model.points.size() < 4) {
     throw InputError("point and normal counts differ or are too small");
+  }
+  m.model.colours = readColours(in);
+  if (m.model.hasColour() && m.model.colours.size() != m.model.size()) {
+    throw InputError("colour and point counts differ");
   }
   m.ppf_map = PpfHashMap::read(in, m.model.size());
   if (in.peek() != std::char_traits<char>::eof()) throw InputError("trailing bytes after the map");

@@ -18,8 +18,9 @@ constexpr uint64_t kSamplingSeed = 0x5707C5;  // fixed: a model always gives the
 OrientedPoints denseSurface(const MeshData& mesh, const ModelSamplingParams& params, float radius,
                             Rng& rng) {
   if (!mesh.isMesh()) {
-    OrientedPoints dense{mesh.vertices,
-                         estimatePcaNormals(mesh.vertices, params.normal_neighbours)};
+    OrientedPoints dense{
+        mesh.vertices, estimatePcaNormals(mesh.vertices, params.normal_neighbours), {}};
+    for (const auto& rgba : mesh.colours) dense.colours.push_back(toColour(rgba));
     VisibilityOrientationParams vis;
     vis.viewpoints = params.orientation_viewpoints;
     orientNormalsByVisibility(dense.points, dense.normals, vis);
@@ -70,6 +71,10 @@ Eigen::Vector3f sampleCentre(const ObjectModel& model) {
 ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params) {
   params.validate();
   if (mesh.vertices.empty()) throw InputError("model has no vertices");
+  if (mesh.hasColour() && mesh.colours.size() != mesh.vertices.size()) {
+    throw InputError(fmt::format("model has {} vertex colours for {} vertices", mesh.colours.size(),
+                                 mesh.vertices.size()));
+  }
   Rng rng(kSamplingSeed);
   ObjectModel model;
   model.diameter = pointSetDiameter(mesh.vertices);
@@ -87,6 +92,7 @@ ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params
   for (size_t i : kept) {
     model.points.push_back(dense.points[i]);
     model.normals.push_back(dense.normals[i].normalized());
+    if (!dense.colours.empty()) model.colours.push_back(dense.colours[i]);
   }
   return model;
 }

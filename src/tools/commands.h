@@ -22,5 +22,6 @@ Command registerMeshes(CLI::App& app);
 Command registerSynth(CLI::App& app);
 Command registerCalibrate(CLI::App& app);
 Command registerSimmaps(CLI::App& app);
+Command registerColourModels(CLI::App& app);
 
 }  // namespace stocs::tools

@@ -190,7 +190,7 @@ class EstimateRun {
     return m;
   }
 
-  /// The image's raw data (depth, maps, boundary), loaded before any clock starts (BOP's
+  /// The image's raw data (depth, maps, boundary, colour), loaded before any clock starts (BOP's
   /// definition of the time), as a frame without its cloud.
   Frame rawFrame(const ImageTargets& image, cv::Mat& depth) {
     Frame frame;
@@ -209,6 +209,7 @@ class EstimateRun {
       }
     }
     if (o_.boundaries == "auto") frame.boundary = dataset_.loadBoundary(image.scene, image.im);
+    frame.colour = dataset_.loadColour(image.scene, image.im, depth.size());
     frame.camera = image.camera.intrinsics(depth.cols, depth.rows);
     return frame;
   }

@@ -20,11 +20,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.option_defaults()->always_capture_default();
   const std::vector<stocs::tools::Command> commands = {
-      stocs::tools::registerEstimate(app),  stocs::tools::registerPrepare(app),
-      stocs::tools::registerEval(app),      stocs::tools::registerBench(app),
-      stocs::tools::registerOverlay(app),   stocs::tools::registerSimstats(app),
-      stocs::tools::registerMeshes(app),    stocs::tools::registerSynth(app),
-      stocs::tools::registerCalibrate(app), stocs::tools::registerSimmaps(app)};
+      stocs::tools::registerEstimate(app),    stocs::tools::registerPrepare(app),
+      stocs::tools::registerEval(app),        stocs::tools::registerBench(app),
+      stocs::tools::registerOverlay(app),     stocs::tools::registerSimstats(app),
+      stocs::tools::registerMeshes(app),      stocs::tools::registerSynth(app),
+      stocs::tools::registerCalibrate(app),   stocs::tools::registerSimmaps(app),
+      stocs::tools::registerColourModels(app)};
   CLI11_PARSE(app, argc, argv);
   try {
     for (const stocs::tools::Command& command : commands) {

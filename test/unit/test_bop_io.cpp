@@ -3,6 +3,7 @@
 
 #include <fstream>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_results.h"
@@ -40,6 +41,28 @@ TEST(BopDataset, ReadsASyntheticDataset) {
   EXPECT_EQ(ds.loadDepth(0, 0).type(), CV_16UC1);
   EXPECT_EQ(ds.loadProbability(0, 0, 1).type(), CV_32FC1);
   EXPECT_TRUE(ds.loadBoundary(0, 0).empty());
+  EXPECT_TRUE(ds.loadColour(0, 0, {320, 240}).empty());
+}
+
+TEST(BopDataset, ReadsTheColourImageOfAFrameAndNamesOneThatDoesNotFit) {
+  const auto root = test::scratchDir("bop_colour");
+  test::writeSyntheticBopDataset(root);
+  const BopDataset ds(root);
+  std::filesystem::create_directories(root / "test" / "000000" / "rgb");
+  const cv::Mat bgr(240, 320, CV_8UC3, cv::Scalar(10, 20, 30));
+  ASSERT_TRUE(cv::imwrite(ds.rgbPath(0, 0).replace_extension(".jpg").string(), bgr));
+  const cv::Mat read = ds.loadColour(0, 0, {320, 240});
+  ASSERT_EQ(read.type(), CV_8UC3);
+  EXPECT_NEAR(cv::mean(read)[2], 30, 2);
+  EXPECT_NE(errorOf([&] {
+              ds.loadColour(0, 0, {640, 480});
+            }).find("000000.jpg: colour image is 320x240 but the depth image is 640x480"),
+            std::string::npos);
+  std::ofstream(ds.rgbPath(0, 0)) << "not a png";  // .png comes first
+  EXPECT_NE(errorOf([&] {
+              ds.loadColour(0, 0, {320, 240});
+            }).find("000000.png: not a readable"),
+            std::string::npos);
 }
 
 TEST(BopDataset, MalformedFilesNameTheFileAndProblem) {

@@ -87,6 +87,16 @@ TEST_F(EstimatorTest, BadRequestsAreNamed) {
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "object 'block': probability image is 10x10 but the cloud is 320x240");
   }
+  Frame coloured = frame_;
+  coloured.colour = cv::Mat(480, 640, CV_8UC3);
+  try {
+    estimator.estimate(coloured, "block");
+    ADD_FAILURE() << "a colour image of another size was estimated";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "object 'block': colour image 640x480 does not fit the 320x240 cloud");
+  }
+  coloured.colour = cv::Mat(240, 320, CV_8UC1);
+  EXPECT_THROW(estimator.estimate(coloured, "block"), InputError);
   PipelineParams bad;
   bad.stocs.bases = 0;
   EXPECT_THROW(Estimator{bad}, InputError);
@@ -100,10 +110,13 @@ TEST_F(EstimatorTest, TheFrameLoopRunsAnyMethodAndRequiresEveryRequestedMap) {
     EXPECT_EQ(in.cloud, &frame_.cloud);
     EXPECT_EQ(in.model, &model);
     EXPECT_EQ(in.camera->fx, frame_.camera->fx);
+    EXPECT_EQ(in.colour, frame_.colour.empty() ? nullptr : &frame_.colour);
     return PoseEstimate{};
   };
   EXPECT_EQ(estimateFrame(frame_, {{"block", &model}}, PipelineParams{}, counting).size(), 1u);
-  EXPECT_EQ(calls, 1);
+  frame_.colour = cv::Mat(frame_.cloud.height, frame_.cloud.width, CV_8UC3, cv::Scalar(0, 0, 255));
+  EXPECT_EQ(estimateFrame(frame_, {{"block", &model}}, PipelineParams{}, counting).size(), 1u);
+  EXPECT_EQ(calls, 2);
   try {
     estimateFrame(frame_, {{"block", &model}, {"mug", &model}}, PipelineParams{}, counting);
     ADD_FAILURE() << "an object without a map was estimated";

@@ -162,6 +162,9 @@ TEST(MeshFormats, TheProjectsMeshesLoadFromEveryFormat) {
       const MeshData read = loadMesh(file.string(), 0.001f);
       EXPECT_EQ(read.triangles.size(), reference.triangles.size()) << file;
       EXPECT_EQ(cornerSet(read), cornerSet(reference)) << file;
+      // The exporter writes the white material assimp gives a PLY without colour; STL has none.
+      EXPECT_EQ(read.hasColour(), ext != ".stl") << file;
+      for (const Rgba& c : read.colours) ASSERT_EQ(c, Rgba(255, 255, 255, 255)) << file;
     }
   }
 }

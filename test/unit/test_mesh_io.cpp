@@ -144,6 +144,7 @@ TEST(MeshIo, ReadsBinaryPlyAndBopStyleAsciiHeaders) {
   const MeshData bop = loadMesh((dir / "bop.ply").string(), 0.001f);
   EXPECT_EQ(bop.vertices.size(), 3u);
   EXPECT_EQ(bop.triangles.size(), 1u);
+  EXPECT_EQ(bop.colours, std::vector<Rgba>(3, {10, 20, 30, 255}));
 }
 
 // Regression (fuzz_ply_model): PCL's PLY reader aborts on an assert for list properties outside a

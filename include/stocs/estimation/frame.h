@@ -27,6 +27,9 @@ struct Frame {
   /// Per object name: CV_32FC1 class probabilities in [0, 1], the cloud's size.
   std::map<std::string, cv::Mat> probabilities;
   cv::Mat boundary;  ///< optional instance boundary map: CV_8UC1, >= 128 interior
+  /// Optional colour image registered with the cloud: CV_8UC3 BGR, the cloud's size, pixel (u, v)
+  /// the colour of cloud point (u, v). Empty: no colour.
+  cv::Mat colour;
 
   /// A frame of a depth image (CV_16UC1 or CV_32FC1; `metres_per_unit`: 0.001 for mm) and the
   /// camera that took it, without probability maps yet.
@@ -35,12 +38,13 @@ struct Frame {
 };
 
 /// Everything the estimation of one object in a frame reads (PoseMethod::estimate). Pointers are
-/// never null except `boundary`.
+/// never null except `boundary` and `colour`.
 struct ObjectInput {
   const OrganizedCloud* cloud = nullptr;
   const CameraIntrinsics* camera = nullptr;  ///< the cloud's intrinsics
   const cv::Mat* probability = nullptr;      ///< CV_32FC1 in [0, 1]
   const cv::Mat* boundary = nullptr;         ///< optional CV_8UC1 instance boundary map
+  const cv::Mat* colour = nullptr;           ///< optional CV_8UC3 BGR image (Frame::colour)
   const PreparedModel* model = nullptr;
   /// StoCS parameters; other methods honour the shared ones (seed, threads, time_budget, segment
   /// voxel size and normals).
@@ -70,8 +74,8 @@ PoseEstimate detectObject(const ObjectInput& input);
 CameraIntrinsics frameCamera(const Frame& frame);
 
 /// What the estimation of `object` in `frame` reads (pointing into the arguments, which must
-/// outlive it). Throws InputError when the frame has no probability map for it or the map does not
-/// fit the cloud.
+/// outlive it). Throws InputError when the frame has no probability map for it, or the map or the
+/// colour image does not fit the cloud.
 ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
                         const FrameObject& object, const PipelineParams& params);
 /// A temporary camera would not outlive the input that points to it.

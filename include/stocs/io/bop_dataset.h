@@ -13,6 +13,8 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/model/object_symmetries.h"
 
+#include <opencv2/core/types.hpp>
+
 namespace cv {
 class Mat;
 }
@@ -71,6 +73,8 @@ class BopDataset {
   std::filesystem::path modelPath(int obj_id) const;
   std::filesystem::path depthPath(int scene_id, int im_id) const;
   std::filesystem::path rgbPath(int scene_id, int im_id) const;
+  /// The frame's colour image `rgb/{im:06d}.png`, else `.jpg`; empty when it has neither.
+  std::filesystem::path colourPath(int scene_id, int im_id) const;
   std::filesystem::path probabilityPath(int scene_id, int im_id, int obj_id) const;
   std::filesystem::path maskVisibPath(int scene_id, int im_id, int gt_index) const;
   /// Extension `edge/{im:06d}.png`: 8-bit instance boundary map, 255 interior, 0 boundary.
@@ -84,6 +88,9 @@ class BopDataset {
   /// Boundary map (CV_8UC1), or an empty image when the frame has none; throws InputError naming
   /// the file when it exists but is not a single-channel 8-bit image.
   cv::Mat loadBoundary(int scene_id, int im_id) const;
+  /// Colour image (CV_8UC3 BGR, colourPath), or an empty image when the frame has none; throws
+  /// InputError naming the file when it is unreadable or not of `size` (the depth image's).
+  cv::Mat loadColour(int scene_id, int im_id, cv::Size size) const;
 
  private:
   std::filesystem::path root_;

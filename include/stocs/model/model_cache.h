@@ -65,7 +65,7 @@ const char* toString(CacheOutcome outcome);
 class ModelCache {
  public:
   /// Bumped whenever the payload layout or the preparation algorithm changes.
-  static constexpr uint32_t kFormatVersion = 1;
+  static constexpr uint32_t kFormatVersion = 2;  // 2: sample colours
 
   /// A cache in `directory`; an empty path disables caching.
   explicit ModelCache(std::filesystem::path directory = defaultDirectory());

@@ -31,8 +31,12 @@ struct ObjectModel {
   std::vector<Eigen::Vector3f> normals;  ///< unit, outward
   float diameter = 0;                    ///< of the input surface, metres
   float sampling_radius = 0;             ///< Poisson-disc radius used, metres
+  /// The surface's colour at each sample (mesh.h's Colour, NaN where unknown); empty when the model
+  /// file has no colour.
+  std::vector<Colour> colours;
 
   size_t size() const { return points.size(); }
+  bool hasColour() const { return !colours.empty(); }
 };
 
 /// Mean of the model's samples: the point about which the refinement's steps turn, and the near
@@ -43,7 +47,8 @@ Eigen::Vector3f sampleCentre(const ObjectModel& model);
 constexpr size_t kMaxModelSamples = 65535;
 
 /// Samples a mesh's surface (area-weighted, then Poisson-disc) with face normals, or thins a point
-/// model (Poisson-disc) after estimating and orienting its normals. Deterministic.
+/// model (Poisson-disc) after estimating and orienting its normals. Deterministic. Samples carry
+/// the colour interpolated at them (meshes) or their point's colour (point models).
 ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params);
 
 }  // namespace stocs

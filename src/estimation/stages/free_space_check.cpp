@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
 #include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
@@ -43,25 +42,15 @@ float FreeSpaceCheck::violation(const ObjectModel& model, const Eigen::Isometry3
 SurfaceComparison FreeSpaceCheck::compare(const ObjectModel& model, const Eigen::Isometry3f& pose,
                                           const cv::Mat* probability) const {
   SurfaceComparison c;
-  for (size_t i = 0; i < model.size(); ++i) {
-    const Eigen::Vector3f p = pose * model.points[i];
-    // Samples on the far side of the object are hidden by the object itself.
-    if (p.z() <= 0 || (pose.linear() * model.normals[i]).dot(p) >= 0) continue;
-    const Eigen::Vector2f uv = camera_.project(p);
-    const int u = static_cast<int>(std::lround(uv.x()));
-    const int v = static_cast<int>(std::lround(uv.y()));
-    if (u < 0 || v < 0 || u >= cloud_.width || v >= cloud_.height) continue;
-    const int index = v * cloud_.width + u;
-    if (!cloud_.isValid(index)) continue;  // no measurement: nothing is known there
+  visit(model, pose, [&](size_t, int u, int v, SampleView view) {
     ++c.seen;
-    const float behind = cloud_.points[index].z() - p.z();
-    if (behind > params_.margin) {
+    if (view == SampleView::kFree) {
       ++c.free;
-    } else if (behind >= -params_.margin) {  // farther in front of the sample: occluded
+    } else if (view == SampleView::kConfirmed) {
       ++c.confirmed;
       if (probability) c.support += probability->at<float>(v, u);
     }
-  }
+  });
   return c;
 }
 

@@ -2,9 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <limits>
-#include <opencv2/imgcodecs.hpp>
 
 #include "stocs/util/error.h"
 
@@ -21,15 +19,7 @@ BopFrame loadBopFrame(const stocs::BopDataset& dataset, int scene, int image,
   raw.convertTo(frame.depth, CV_32FC1, metres_per_unit);
   frame.depth.setTo(std::numeric_limits<float>::quiet_NaN(), raw == 0);
 
-  const std::filesystem::path rgb = dataset.rgbPath(scene, image);
-  if (std::filesystem::exists(rgb)) {
-    frame.bgr = cv::imread(rgb.string(), cv::IMREAD_COLOR);
-    if (frame.bgr.size() != raw.size()) {
-      throw stocs::InputError(fmt::format("{}: colour image is {}x{} but the depth is {}x{}",
-                                          rgb.string(), frame.bgr.cols, frame.bgr.rows, raw.cols,
-                                          raw.rows));
-    }
-  }
+  frame.bgr = dataset.loadColour(scene, image, raw.size());
   for (int id : object_ids) {
     cv::Mat p;
     if (probabilities.available(scene, image, id)) {

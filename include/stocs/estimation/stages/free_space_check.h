@@ -7,6 +7,7 @@
 // tells them apart. It needs the organized cloud, not just the segment.
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"
@@ -41,6 +42,14 @@ struct SurfaceComparison {
   double support = 0;  ///< sum of the probability map at the confirmed samples' pixels
 };
 
+/// Where a camera-facing model sample projecting onto a measured pixel lies
+/// (FreeSpaceCheck::visit).
+enum class SampleView {
+  kFree,  ///< in front of the measured surface by more than the margin: the sensor sees through
+  kConfirmed,  ///< within the margin of the measured surface
+  kOccluded,   ///< behind the measured surface by more than the margin
+};
+
 class FreeSpaceCheck {
  public:
   /// Keeps references: `cloud` and `camera` (its intrinsics) must outlive the check.
@@ -58,6 +67,11 @@ class FreeSpaceCheck {
   SurfaceComparison compare(const ObjectModel& model, const Eigen::Isometry3f& pose,
                             const cv::Mat* probability = nullptr) const;
 
+  /// Calls `f(sample index, u, v, SampleView)` for each model sample that faces the camera at
+  /// `pose` and projects onto pixel (u, v) with a measurement: the samples compare() counts.
+  template <class F>
+  void visit(const ObjectModel& model, const Eigen::Isometry3f& pose, F&& f) const;
+
   const CameraIntrinsics& camera() const { return camera_; }
 
  private:
@@ -65,5 +79,25 @@ class FreeSpaceCheck {
   const CameraIntrinsics& camera_;
   FreeSpaceParams params_;
 };
+
+template <class F>
+void FreeSpaceCheck::visit(const ObjectModel& model, const Eigen::Isometry3f& pose, F&& f) const {
+  for (size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3f p = pose * model.points[i];
+    // Samples on the far side of the object are hidden by the object itself.
+    if (p.z() <= 0 || (pose.linear() * model.normals[i]).dot(p) >= 0) continue;
+    const Eigen::Vector2f uv = camera_.project(p);
+    const int u = static_cast<int>(std::lround(uv.x()));
+    const int v = static_cast<int>(std::lround(uv.y()));
+    if (u < 0 || v < 0 || u >= cloud_.width || v >= cloud_.height) continue;
+    const int index = v * cloud_.width + u;
+    if (!cloud_.isValid(index)) continue;  // no measurement: nothing is known there
+    const float behind = cloud_.points[index].z() - p.z();
+    f(i, u, v,
+      behind > params_.margin     ? SampleView::kFree
+      : behind >= -params_.margin ? SampleView::kConfirmed
+                                  : SampleView::kOccluded);
+  }
+}
 
 }  // namespace stocs

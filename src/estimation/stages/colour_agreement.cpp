@@ -1,0 +1,66 @@
+#include "stocs/estimation/stages/colour_agreement.h"
+
+#include <algorithm>
+#include <opencv2/core.hpp>
+#include <vector>
+
+namespace stocs {
+namespace {
+
+// Colours whose channels sum below this (of 3) are too dark for their chromaticity to be more
+// than noise; an observed channel at or above kSaturated is clipped, its chromaticity wrong.
+constexpr float kDarkSum = 0.15f;
+constexpr float kSaturated = 250.0f / 255.0f;
+
+Eigen::Vector3f chromaticity(const Eigen::Vector3f& rgb) {
+  return rgb / rgb.sum();
+}
+
+/// The (model, observed) colour pairs of the pose's confirmed samples that carry chromaticity.
+void collectPairs(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                  const FreeSpaceCheck& visibility, const cv::Mat& colour,
+                  std::vector<Eigen::Vector3f>& model_rgb, std::vector<Eigen::Vector3f>& seen_rgb) {
+  visibility.visit(model, pose, [&](size_t i, int u, int v, SampleView view) {
+    const Colour& m = model.colours[i];
+    if (view != SampleView::kConfirmed || !isKnown(m) || m.sum() < kDarkSum) return;
+    const cv::Vec3b& bgr = colour.at<cv::Vec3b>(v, u);
+    const Eigen::Vector3f o = Eigen::Vector3f(bgr[2], bgr[1], bgr[0]) / 255.0f;
+    if (o.sum() < kDarkSum || o.maxCoeff() >= kSaturated) return;
+    model_rgb.push_back(m);
+    seen_rgb.push_back(o);
+  });
+}
+
+}  // namespace
+
+ColourAgreement colourAgreement(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                                const FreeSpaceCheck& visibility, const cv::Mat* colour) {
+  ColourAgreement result;
+  if (!model.hasColour() || !colour) return result;
+  std::vector<Eigen::Vector3f> model_rgb, seen_rgb;
+  model_rgb.reserve(model.size());
+  seen_rgb.reserve(model.size());
+  collectPairs(model, pose, visibility, *colour, model_rgb, seen_rgb);
+  result.samples = static_cast<int>(model_rgb.size());
+  if (result.samples < kMinColourSamples) return result;
+  // Grey-world gain between the model's and the observed colours of these samples.
+  Eigen::Vector3f model_sum = Eigen::Vector3f::Zero(), seen_sum = Eigen::Vector3f::Zero();
+  for (size_t k = 0; k < model_rgb.size(); ++k) {
+    model_sum += model_rgb[k];
+    seen_sum += seen_rgb[k];
+  }
+  const Eigen::Vector3f gain = seen_sum.cwiseQuotient(model_sum.cwiseMax(1e-6f));
+  double total = 0;
+  for (size_t k = 0; k < model_rgb.size(); ++k) {
+    const Eigen::Vector3f lit = gain.cwiseProduct(model_rgb[k]);
+    // 2, the largest distance, where the gain leaves the model colour black.
+    const float distance =
+        lit.sum() > 0 ? (chromaticity(lit) - chromaticity(seen_rgb[k])).lpNorm<1>() : 2.0f;
+    total += std::max(0.0f, 1 - distance / kChromaticityTolerance);
+  }
+  result.evidence = true;
+  result.agreement = static_cast<float>(total / result.samples);
+  return result;
+}
+
+}  // namespace stocs
