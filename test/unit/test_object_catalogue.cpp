@@ -101,22 +101,27 @@ std::string fileBytes(const std::filesystem::path& file) {
   return s.str();
 }
 
+/// Closed (where painted, once coinciding vertices are merged), outward, centred on its bounding
+/// box and of a graspable size.
+void expectCentredSolid(const CatalogueObject& o) {
+  expectClosedAndConsistent(welded(o.mesh), o.name);
+  EXPECT_GT(signedVolume(o.mesh), 0) << o.name << " is wound inside out";
+  Eigen::Vector3f lo = o.mesh.vertices[0], hi = lo;
+  for (const Eigen::Vector3f& v : o.mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  EXPECT_LT(((lo + hi) / 2).norm(), 1e-6f) << o.name;
+  EXPECT_GT(pointSetDiameter(o.mesh.vertices), 0.05f) << o.name;
+  EXPECT_LT(pointSetDiameter(o.mesh.vertices), 0.25f) << o.name;
+}
+
 TEST(ObjectCatalogue, EveryMeshIsClosedOutwardAndCentred) {
   const std::vector<CatalogueObject> objects = objectCatalogue();
   ASSERT_EQ(objects.size(), 6u);
   for (size_t i = 0; i < objects.size(); ++i) {
-    const CatalogueObject& o = objects[i];
-    EXPECT_EQ(o.id, static_cast<int>(i) + 1);
-    expectClosedAndConsistent(o.mesh, o.name);
-    EXPECT_GT(signedVolume(o.mesh), 0) << o.name << " is wound inside out";
-    Eigen::Vector3f lo = o.mesh.vertices[0], hi = lo;
-    for (const Eigen::Vector3f& v : o.mesh.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    EXPECT_LT(((lo + hi) / 2).norm(), 1e-6f) << o.name;
-    EXPECT_GT(pointSetDiameter(o.mesh.vertices), 0.05f) << o.name;
-    EXPECT_LT(pointSetDiameter(o.mesh.vertices), 0.25f) << o.name;
+    EXPECT_EQ(objects[i].id, static_cast<int>(i) + 1);
+    expectCentredSolid(objects[i]);
   }
 }
 
@@ -179,8 +184,7 @@ TEST(TexturedCatalogue, ClosedOutwardCentredColouredAndWithoutSymmetries) {
   for (size_t i = 0; i < objects.size(); ++i) {
     const CatalogueObject& o = objects[i];
     EXPECT_EQ(o.id, static_cast<int>(i) + 7);
-    expectClosedAndConsistent(welded(o.mesh), o.name);
-    EXPECT_GT(signedVolume(o.mesh), 0) << o.name << " is wound inside out";
+    expectCentredSolid(o);
     ASSERT_EQ(o.mesh.colours.size(), o.mesh.vertices.size()) << o.name;
     for (const VertexColour& c : o.mesh.colours) ASSERT_EQ(c[3], 255) << o.name;
     EXPECT_FALSE(o.symmetries.symmetric()) << o.name << ": the print is kept by no symmetry";
