@@ -32,15 +32,19 @@ MetricSummary summarize(const std::vector<TargetErrors>& errors) {
   if (errors.empty()) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     s.adds_auc = s.adds_success = s.add_or_adds_success = s.rt_success = nan;
+    s.mssd_success = s.mssd_recall = nan;
     s.median_adds_mm = s.median_rotation_deg = s.median_translation_mm = nan;
     return s;
   }
   std::vector<double> adds, rotation, translation;
-  size_t adds_ok = 0, add_ok = 0, rt_ok = 0;
+  size_t adds_ok = 0, add_ok = 0, mssd_ok = 0, rt_ok = 0;
+  double mssd_recall = 0;
   for (const TargetErrors& e : errors) {
     s.found += e.found;
     adds_ok += e.addsSuccess();
     add_ok += e.addOrAddsSuccess();
+    mssd_ok += e.mssdSuccess();
+    mssd_recall += e.mssdRecall();
     rt_ok += e.rtSuccess();
     adds.push_back(e.adds_mm);
     rotation.push_back(e.rotation_deg);
@@ -50,6 +54,8 @@ MetricSummary summarize(const std::vector<TargetErrors>& errors) {
   s.adds_auc = accuracyCurveArea(adds, kAddsCurveLimitMm);
   s.adds_success = adds_ok / n;
   s.add_or_adds_success = add_ok / n;
+  s.mssd_success = mssd_ok / n;
+  s.mssd_recall = mssd_recall / n;
   s.rt_success = rt_ok / n;
   s.median_adds_mm = quantile(adds, 0.5);
   s.median_rotation_deg = quantile(rotation, 0.5);

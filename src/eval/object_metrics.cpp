@@ -17,16 +17,34 @@ std::vector<Eigen::Vector3f> nonEmpty(std::vector<Eigen::Vector3f> points) {
   return points;
 }
 
+/// At most `count` of `points`, evenly spaced in their order (all of them when there are fewer).
+std::vector<Eigen::Vector3f> evenlySpaced(const std::vector<Eigen::Vector3f>& points,
+                                          size_t count) {
+  if (points.size() <= count) return points;
+  std::vector<Eigen::Vector3f> some;
+  for (size_t k = 0; k < count; ++k) some.push_back(points[k * points.size() / count]);
+  return some;
+}
+
 }  // namespace
 
 TargetErrors::TargetErrors()
     : add_mm(std::numeric_limits<double>::infinity()),
       adds_mm(add_mm),
+      mssd_mm(add_mm),
       rotation_deg(add_mm),
       translation_mm(add_mm) {}
 
+double TargetErrors::mssdRecall() const {
+  constexpr int kThresholds = 10;  // k / 20 of the diameter for k = 1..10: 0.05, 0.1, ..., 0.5
+  int below = 0;
+  for (int k = 1; k <= kThresholds; ++k) below += mssd_mm * 20 < k * diameter_mm;
+  return static_cast<double>(below) / kThresholds;
+}
+
 ObjectMetrics::ObjectMetrics(std::vector<Eigen::Vector3f> points_mm, const BopObjectInfo& info)
     : adds_(nonEmpty(std::move(points_mm))),
+      mssd_points_(evenlySpaced(adds_.points(), kMssdPoints)),
       symmetries_(symmetryTransformations(info)),
       diameter_mm_(info.diameter_mm > 0 ? info.diameter_mm : pointSetDiameter(adds_.points())),
       symmetric_(info.symmetric()) {
@@ -65,6 +83,7 @@ TargetErrors ObjectMetrics::evaluate(const RigidPose* estimate,
   const RigidPose& truth = instances[e.instance];
   e.found = true;
   e.add_mm = addError(adds_.points(), *estimate, truth);
+  e.mssd_mm = mssdError(mssd_points_, *estimate, truth, symmetries_);
   const RtError rt = rtError(*estimate, truth, symmetries_);
   e.rotation_deg = rt.rotation_deg;
   e.translation_mm = rt.translation_mm;

@@ -1,5 +1,6 @@
 #include "stocs/eval/pose_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -54,6 +55,27 @@ double addError(const std::vector<Eigen::Vector3f>& model_points, const RigidPos
     sum += ((estimate.R * q + estimate.t) - (truth.R * q + truth.t)).norm();
   }
   return sum / model_points.size();
+}
+
+double mssdError(const std::vector<Eigen::Vector3f>& model_points, const RigidPose& estimate,
+                 const RigidPose& truth, const std::vector<RigidPose>& symmetries) {
+  if (model_points.empty()) return 0;
+  double best = std::numeric_limits<double>::infinity();
+  for (const RigidPose& s : symmetries) {
+    // x -> (truth S)^-1 estimate x: the distance of a point is the same in that model frame.
+    const Eigen::Matrix3d R_truth = truth.R * s.R;
+    const Eigen::Vector3d t_truth = truth.R * s.t + truth.t;
+    const Eigen::Matrix3d R = R_truth.transpose() * estimate.R;
+    const Eigen::Vector3d t = R_truth.transpose() * (estimate.t - t_truth);
+    double worst = 0;
+    for (const Eigen::Vector3f& p : model_points) {
+      const Eigen::Vector3d q = p.cast<double>();
+      worst = std::max(worst, (R * q + t - q).squaredNorm());
+      if (worst >= best * best) break;  // this symmetry cannot beat the best
+    }
+    best = std::min(best, std::sqrt(worst));
+  }
+  return best;
 }
 
 double addsError(const std::vector<Eigen::Vector3f>& model_points, const RigidPose& estimate,

@@ -42,6 +42,18 @@ json rowMajor(const Matrix& m) {
   return a;
 }
 
+/// One entry per image id: the list of its instances, each as `entry` writes it.
+template <class Instance, class Entry>
+json perImage(const std::map<int, std::vector<Instance>>& by_image, const Entry& entry) {
+  json j = json::object();
+  for (const auto& [im, instances] : by_image) {
+    json list = json::array();
+    for (const Instance& instance : instances) list.push_back(entry(instance));
+    j[std::to_string(im)] = list;
+  }
+  return j;
+}
+
 }  // namespace
 
 void writeModels(const fs::path& models_dir, const std::vector<CatalogueObject>& objects) {
@@ -87,32 +99,32 @@ void writeSceneCameras(const fs::path& file, const std::map<int, BopFrameCamera>
 
 void writeSceneGroundTruth(const fs::path& file,
                            const std::map<int, std::vector<BopGtInstance>>& gt) {
-  json j = json::object();
-  for (const auto& [im, instances] : gt) {
-    json list = json::array();
-    for (const BopGtInstance& g : instances) {
-      list.push_back(
-          {{"cam_R_m2c", rowMajor(g.R)}, {"cam_t_m2c", rowMajor(g.t_mm)}, {"obj_id", g.obj_id}});
-    }
-    j[std::to_string(im)] = list;
-  }
-  writeJson(file, j);
+  writeJson(file, perImage(gt, [](const BopGtInstance& g) {
+              return json{{"cam_R_m2c", rowMajor(g.R)},
+                          {"cam_t_m2c", rowMajor(g.t_mm)},
+                          {"obj_id", g.obj_id}};
+            }));
 }
 
 void writeSceneGtInfo(const fs::path& file, const std::map<int, std::vector<BopGtInfo>>& info) {
-  json j = json::object();
-  for (const auto& [im, instances] : info) {
-    json list = json::array();
-    for (const BopGtInfo& g : instances) {
-      list.push_back(
-          {{"px_count_all", g.px_count_all},
-           {"px_count_visib", g.px_count_visib},
-           {"visib_fract", g.visib_fract},
-           {"bbox_visib", {g.bbox_visib[0], g.bbox_visib[1], g.bbox_visib[2], g.bbox_visib[3]}}});
-    }
-    j[std::to_string(im)] = list;
-  }
-  writeJson(file, j);
+  writeJson(file, perImage(info, [](const BopGtInfo& g) {
+              return json{{"px_count_all", g.px_count_all},
+                          {"px_count_visib", g.px_count_visib},
+                          {"visib_fract", g.visib_fract},
+                          {"bbox_visib",
+                           {g.bbox_visib[0], g.bbox_visib[1], g.bbox_visib[2], g.bbox_visib[3]}}};
+            }));
+}
+
+void writeSceneHandles(const fs::path& file,
+                       const std::map<int, std::vector<HandleVisibility>>& handles) {
+  writeJson(file, perImage(handles, [](const HandleVisibility& h) {
+              return json{{"gt_index", h.gt_index},
+                          {"obj_id", h.obj_id},
+                          {"px_count_all", h.px_count_all},
+                          {"px_count_visib", h.px_count_visib},
+                          {"handle_visible", h.visible()}};
+            }));
 }
 
 }  // namespace stocs

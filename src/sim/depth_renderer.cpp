@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -16,9 +18,37 @@ DepthRenderer::DepthRenderer(const CameraIntrinsics& camera) : camera_(camera) {
 
 namespace {
 constexpr float kNear = 0.01f;
+
+using Rgba = Eigen::Matrix<uint8_t, 4, 1>;
+
+/// The colour at barycentric weights `w` of triangle `t`: the weighted mean of its vertices of
+/// known colour (alpha > 0), alpha 0 when none is known.
+cv::Vec4b blend(const std::vector<Rgba>& colours, const Eigen::Vector3i& t,
+                const Eigen::Vector3f& w) {
+  Eigen::Vector4f sum = Eigen::Vector4f::Zero();
+  float weight = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Rgba& colour = colours[t[k]];
+    if (colour[3] == 0) continue;
+    sum += w[k] * colour.cast<float>();
+    weight += w[k];
+  }
+  if (!(weight > 0)) return cv::Vec4b(0, 0, 0, 0);
+  sum /= weight;
+  return cv::Vec4b(cv::saturate_cast<uint8_t>(sum[0]), cv::saturate_cast<uint8_t>(sum[1]),
+                   cv::saturate_cast<uint8_t>(sum[2]), cv::saturate_cast<uint8_t>(sum[3]));
+}
+
 }  // namespace
 
 void DepthRenderer::draw(const MeshData& mesh, const Eigen::Isometry3f& pose, int label) {
+  if (mesh.hasColour() && mesh.colours.size() != mesh.vertices.size()) {
+    throw InputError(fmt::format("renderer: {} colours for {} vertices", mesh.colours.size(),
+                                 mesh.vertices.size()));
+  }
+  if (mesh.hasColour() && colours_.empty()) {
+    colours_ = cv::Mat(camera_.height, camera_.width, CV_8UC4, cv::Scalar(0, 0, 0, 0));
+  }
   std::vector<Eigen::Vector3f> cam(mesh.vertices.size());
   std::vector<Eigen::Vector2f> px(mesh.vertices.size());
   for (size_t i = 0; i < mesh.vertices.size(); ++i) {
@@ -58,6 +88,12 @@ void DepthRenderer::draw(const MeshData& mesh, const Eigen::Isometry3f& pose, in
         d = z;
         labels_.at<int>(v, u) = label;
         normals_.at<cv::Vec3f>(v, u) = cv::Vec3f(normal.x(), normal.y(), normal.z());
+        if (colours_.empty()) continue;
+        // Perspective-correct weights: each screen weight over its vertex's depth, times z.
+        colours_.at<cv::Vec4b>(v, u) =
+            mesh.hasColour()
+                ? blend(mesh.colours, t, Eigen::Vector3f(wa * iza, wb * izb, wc * izc) * z)
+                : cv::Vec4b(0, 0, 0, 0);
       }
     }
   }
@@ -82,6 +118,7 @@ void DepthRenderer::drawPoints(const std::vector<Eigen::Vector3f>& points,
       d = p.z();
       labels_.at<int>(v, u) = label;
       normals_.at<cv::Vec3f>(v, u) = cv::Vec3f(to_camera.x(), to_camera.y(), to_camera.z());
+      if (!colours_.empty()) colours_.at<cv::Vec4b>(v, u) = cv::Vec4b(0, 0, 0, 0);
     };
     if (u0 > u1 || v0 > v1) {  // smaller than a pixel: its own pixel
       const int u = static_cast<int>(std::lround(c.x())), v = static_cast<int>(std::lround(c.y()));

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "stocs/sim/depth_renderer.h"
 #include "stocs/sim/synthetic_frame.h"
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
@@ -77,6 +78,33 @@ std::set<int> writeInstances(const fs::path& dir, int im, const SyntheticFrame& 
   return present;
 }
 
+/// How much of the handle of each instance that has one the frame shows: the handle's pixels drawn
+/// alone, and those where the visible surface is the same object within 0.5 mm of its depth.
+std::vector<HandleVisibility> handleVisibility(const SyntheticFrame& frame,
+                                               const std::vector<PlacedObject>& objects,
+                                               const Eigen::Isometry3f& camera_pose,
+                                               const std::map<int, MeshData>& handles,
+                                               const CameraIntrinsics& camera) {
+  constexpr double kSameSurface = 0.0005;  // metres
+  std::vector<HandleVisibility> seen;
+  int gt_index = 0;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    if (objects[i].obj_id == 0) continue;
+    const auto handle = handles.find(objects[i].obj_id);
+    if (handle != handles.end()) {
+      DepthRenderer alone(camera);
+      alone.draw(handle->second, camera_pose * objects[i].pose, 1);
+      const cv::Mat drawn = alone.depth() > 0;
+      const cv::Mat same = cv::abs(alone.depth() - frame.exact_depth) < kSameSurface;
+      const cv::Mat visible = drawn & same & (frame.labels == static_cast<int>(i) + 1);
+      seen.push_back(
+          {gt_index, objects[i].obj_id, cv::countNonZero(drawn), cv::countNonZero(visible)});
+    }
+    ++gt_index;
+  }
+  return seen;
+}
+
 }  // namespace
 
 void writeImage(const fs::path& file, const cv::Mat& image) {
@@ -134,10 +162,12 @@ std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects,
 
 SceneWriter::SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
                          std::vector<std::pair<int, MeshData>> models,
+                         std::map<int, MeshData> handles,
                          const std::function<void(const SyntheticImageReport&)>& progress)
     : dataset_(dataset),
       params_(params),
       models_(std::move(models)),
+      handles_(std::move(handles)),
       segmentation_(segmentationPreset(params.segmentation_preset)),
       noise_(params.depth_noise.atLevel(params.depth_noise_level)),
       camera_(bopCamera(params)),
@@ -151,6 +181,9 @@ void SceneWriter::writeView(const SceneView& view, SceneRecords& records,
       drawSceneLook(params_.look, params_.camera, view.look_seed), view.image_seed);
   const std::set<int> present = writeInstances(dataset_.sceneDir(view.scene), view.im, frame,
                                                objects, view.camera_pose, records);
+  std::vector<HandleVisibility> handles =
+      handleVisibility(frame, objects, view.camera_pose, handles_, params_.camera);
+  if (!handles.empty()) records.handles[view.im] = std::move(handles);
   const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};
   const std::vector<BopTarget> targets = imageTargets(view, present, records.gt[view.im]);
   for (const BopTarget& t : targets) {
@@ -177,6 +210,7 @@ void SceneWriter::writeSceneFiles(int scene, const SceneRecords& records) const 
   writeSceneCameras(dir / "scene_camera.json", records.cameras);
   writeSceneGroundTruth(dir / "scene_gt.json", records.gt);
   writeSceneGtInfo(dir / "scene_gt_info.json", records.gt_info);
+  if (!records.handles.empty()) writeSceneHandles(dir / "scene_handles.json", records.handles);
 }
 
 std::vector<BopTarget> SceneWriter::imageTargets(const SceneView& view,

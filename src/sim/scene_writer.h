@@ -24,6 +24,7 @@ struct SceneRecords {
   std::map<int, BopFrameCamera> cameras;
   std::map<int, std::vector<BopGtInstance>> gt;
   std::map<int, std::vector<BopGtInfo>> gt_info;
+  std::map<int, std::vector<HandleVisibility>> handles;  ///< images with a handled object
   std::vector<BopTarget> targets;
 };
 
@@ -45,8 +46,10 @@ struct SceneView {
 
 class SceneWriter {
  public:
+  /// `handles`: the handle of each object id that has one (model frame), whose visibility the
+  /// scene's scene_handles.json records.
   SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
-              std::vector<std::pair<int, MeshData>> models,
+              std::vector<std::pair<int, MeshData>> models, std::map<int, MeshData> handles,
               const std::function<void(const SyntheticImageReport&)>& progress);
 
   const std::vector<std::pair<int, MeshData>>& models() const { return models_; }
@@ -57,7 +60,8 @@ class SceneWriter {
   /// reports it with the time since `start`.
   void writeView(const SceneView& view, SceneRecords& records,
                  std::chrono::steady_clock::time_point start) const;
-  /// scene_camera.json, scene_gt.json and scene_gt_info.json of a scene.
+  /// scene_camera.json, scene_gt.json and scene_gt_info.json of a scene, and its
+  /// scene_handles.json when it has a handled object.
   void writeSceneFiles(int scene, const SceneRecords& records) const;
 
   /// Up to `absent_per_image` of the dataset's objects that are not in `present`, drawn from a
@@ -71,6 +75,7 @@ class SceneWriter {
   const BopDataset& dataset_;
   const SyntheticDatasetParams& params_;
   const std::vector<std::pair<int, MeshData>> models_;
+  const std::map<int, MeshData> handles_;
   const SegmentationNoiseParams segmentation_;
   const DepthNoiseParams noise_;
   const BopFrameCamera camera_;

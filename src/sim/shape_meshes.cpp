@@ -1,6 +1,8 @@
 #include "stocs/sim/shape_meshes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace stocs {
 
@@ -86,6 +88,53 @@ MeshData tubeArcMesh(float arc_radius, float tube_radius, float from, float to, 
     }
   }
   return m;
+}
+
+MeshData gridBoxMesh(const Eigen::Vector3f& size, float cell) {
+  MeshData m;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const float side : {-1.0f, 1.0f}) {
+      // The face's grid axes u and v, with u x v along the outward normal.
+      int u = (axis + 1) % 3, v = (axis + 2) % 3;
+      if (side < 0) std::swap(u, v);
+      const int nu = std::max(1, static_cast<int>(std::lround(size[u] / cell)));
+      const int nv = std::max(1, static_cast<int>(std::lround(size[v] / cell)));
+      const int first = static_cast<int>(m.vertices.size());
+      for (int j = 0; j <= nv; ++j) {
+        for (int i = 0; i <= nu; ++i) {
+          Eigen::Vector3f p;
+          p[axis] = side * size[axis] / 2;
+          p[u] = size[u] * (static_cast<float>(i) / nu - 0.5f);
+          p[v] = size[v] * (static_cast<float>(j) / nv - 0.5f);
+          m.vertices.push_back(p);
+        }
+      }
+      for (int j = 0; j < nv; ++j) {
+        for (int i = 0; i < nu; ++i) {
+          const int a = first + j * (nu + 1) + i, b = a + 1, c = a + nu + 2, d = a + nu + 1;
+          m.triangles.emplace_back(a, b, c);
+          m.triangles.emplace_back(a, c, d);
+        }
+      }
+    }
+  }
+  return m;
+}
+
+MeshData paintedMesh(const MeshData& mesh,
+                     const std::function<VertexColour(const Eigen::Vector3f&)>& paint) {
+  MeshData out;
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    const int first = static_cast<int>(out.vertices.size());
+    Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+    for (int k = 0; k < 3; ++k) {
+      out.vertices.push_back(mesh.vertices[t[k]]);
+      centroid += mesh.vertices[t[k]] / 3;
+    }
+    out.colours.insert(out.colours.end(), 3, paint(centroid));
+    out.triangles.emplace_back(first, first + 1, first + 2);
+  }
+  return out;
 }
 
 void appendMesh(MeshData& mesh, const MeshData& part, const Eigen::Isometry3f& pose) {

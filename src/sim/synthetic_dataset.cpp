@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <chrono>
+#include <map>
 #include <utility>
 
 #include "scene_writer.h"
@@ -39,11 +40,13 @@ std::vector<fs::path> modelFiles(const fs::path& source) {
   return files;
 }
 
-/// The dataset's models: the given files copied, or the catalogue written out when there are none.
-void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& files) {
+/// The dataset's models: the given files copied, or the catalogue objects written out when there
+/// are none.
+void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& files,
+                       const std::vector<CatalogueObject>& catalogue) {
   fs::create_directories(models);
   if (files.empty()) {
-    writeModels(models, objectCatalogue());
+    writeModels(models, catalogue);
     return;
   }
   for (const fs::path& file : files) {
@@ -64,17 +67,34 @@ void createDatasetRoot(const fs::path& root) {
   }
 }
 
-/// The dataset's models by id, in metres; throws InputError when its models_info.json lists none.
-std::vector<std::pair<int, MeshData>> loadModels(const BopDataset& dataset, const fs::path& root) {
+/// The dataset's models by id, in metres, as read back from their files; a catalogue object's
+/// vertex colours are the catalogue's, whatever the files keep of them. Throws InputError when
+/// models_info.json lists none.
+std::vector<std::pair<int, MeshData>> loadModels(const BopDataset& dataset, const fs::path& root,
+                                                 const std::vector<CatalogueObject>& catalogue) {
   std::vector<std::pair<int, MeshData>> models;
   for (const auto& [id, info] : dataset.modelsInfo()) {
     models.emplace_back(id, loadMesh(dataset.modelPath(id).string(), 0.001f));
+  }
+  for (const CatalogueObject& o : catalogue) {
+    for (auto& [id, mesh] : models) {
+      if (id == o.id && o.mesh.hasColour()) mesh.colours = o.mesh.colours;
+    }
   }
   if (models.empty()) {
     throw InputError(
         fmt::format("synth: {} lists no models", (root / "models" / "models_info.json").string()));
   }
   return models;
+}
+
+/// The handle of each catalogue object that has one, by id.
+std::map<int, MeshData> handlesOf(const std::vector<CatalogueObject>& catalogue) {
+  std::map<int, MeshData> handles;
+  for (const CatalogueObject& o : catalogue) {
+    if (!o.handle.vertices.empty()) handles[o.id] = o.handle;
+  }
+  return handles;
 }
 
 /// Scene `scene`: an arrangement from its own random stream viewed from `images_per_scene` random
@@ -138,7 +158,13 @@ const ParamSet<SyntheticDatasetParams>& SyntheticDatasetParams::schema() {
                "random seed: the same seed writes the same files")
           .flag("--seed")
           .nest(&P::sequence, "sequence", SequenceParams::schema(), "Sequences")
-          .nest(&P::look, "look", SceneLookParams::schema(), "Look");
+          .nest(&P::look, "look", SceneLookParams::schema(), "Look")
+          .add(&P::catalogue, "catalogue", "", std::nullopt,
+               fmt::format("generated objects when no --models folder is given: {} (standard: "
+                           "ids 1-6; textured: the vertex-coloured ids 7-9, a labelled box, a "
+                           "printed can and a printed mug; all: both)",
+                           fmt::join(catalogueSelectionNames(), ", ")))
+          .flag("--catalogue");
   return schema;
 }
 
@@ -160,18 +186,27 @@ void SyntheticDatasetParams::validate() const {
   }
   depth_noise.validate();
   segmentationPreset(segmentation_preset);
+  catalogueSelection(catalogue);
 }
 
 void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& params,
                            const fs::path& models_dir,
                            const std::function<void(const SyntheticImageReport&)>& progress) {
   params.validate();
+  if (!models_dir.empty() && params.catalogue != SyntheticDatasetParams().catalogue) {
+    throw InputError(fmt::format(
+        "synth: --catalogue {} selects generated objects: it does not apply with --models",
+        params.catalogue));
+  }
   const std::vector<fs::path> model_files =
       models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
+  const std::vector<CatalogueObject> catalogue =
+      models_dir.empty() ? catalogueSelection(params.catalogue) : std::vector<CatalogueObject>{};
   createDatasetRoot(root);
-  writeModelsFolder(root / "models", model_files);
+  writeModelsFolder(root / "models", model_files, catalogue);
   const BopDataset dataset(root);
-  const SceneWriter writer(dataset, params, loadModels(dataset, root), progress);
+  const SceneWriter writer(dataset, params, loadModels(dataset, root, catalogue),
+                           handlesOf(catalogue), progress);
   std::vector<BopTarget> targets;
   for (int scene = 0; scene < params.scenes; ++scene) {
     const std::vector<BopTarget> scene_targets = params.sequence.enabled

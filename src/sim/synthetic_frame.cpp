@@ -33,6 +33,14 @@ MeshData tableTop() {
   return plane;
 }
 
+/// The surface colour (BGR) at a pixel of an object: the mesh's own where it has one, else
+/// `plain`.
+cv::Vec3b objectColour(const DepthRenderer& renderer, int u, int v, const cv::Vec3b& plain) {
+  if (renderer.colours().empty()) return plain;
+  const cv::Vec4b rgba = renderer.colours().at<cv::Vec4b>(v, u);
+  return rgba[3] == 0 ? plain : cv::Vec3b(rgba[2], rgba[1], rgba[0]);
+}
+
 }  // namespace
 
 CameraIntrinsics defaultSynthCamera() {
@@ -74,7 +82,8 @@ SyntheticFrame renderSyntheticFrame(const std::vector<PlacedObject>& objects,
     for (int u = 0; u < camera.width; ++u) {
       const int l = renderer.labels().at<int>(v, u);
       if (l == 0) continue;
-      const cv::Vec3b base = l == table_label ? table_colours.at<cv::Vec3b>(v, u) : colours[l - 1];
+      const cv::Vec3b base = l == table_label ? table_colours.at<cv::Vec3b>(v, u)
+                                              : objectColour(renderer, u, v, colours[l - 1]);
       frame.rgb.at<cv::Vec3b>(v, u) = shade(base, renderer.normals().at<cv::Vec3f>(v, u), look);
     }
   }

@@ -169,7 +169,8 @@ int runEval(const EvalOptions& o) {
 Command registerEval(CLI::App& app) {
   auto o = std::make_shared<EvalOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "eval", "Pose metrics of BOP results against ground truth (ADD, ADD-S, AUC, APC errors)");
+      "eval",
+      "Pose metrics of BOP results against ground truth (ADD, ADD-S, AUC, MSSD, APC errors)");
   cmd->add_option("--dataset", o->datasets, "BOP dataset folder; repeat, one per --results")
       ->required();
   cmd->add_option("--results", o->results, "BOP results CSV of the --dataset at the same position")

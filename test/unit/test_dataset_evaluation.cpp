@@ -34,7 +34,7 @@ class DatasetEvaluationTest : public ::testing::Test {
     std::filesystem::create_directories(scene / "prob");
     std::filesystem::create_directories(root_ / "models");
     for (const char* obj : {"obj_000001.ply", "obj_000002.ply"}) {
-      writePly(root_ / "models" / obj, MeshData{kCross, {}});
+      writePly(root_ / "models" / obj, MeshData{kCross, {}, {}});
     }
     std::ofstream(root_ / "models" / "models_info.json")
         << R"({"1": {"diameter": 40}, "2": {"diameter": 40, "symmetries_discrete": )"

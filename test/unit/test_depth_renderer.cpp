@@ -1,8 +1,10 @@
-// The z-buffer rasteriser: depth, coverage, normals and occlusion against hand-computed values.
+// The z-buffer rasteriser: depth, coverage, normals, vertex colours and occlusion against
+// hand-computed values.
 #include <gtest/gtest.h>
 
 #include "stocs/geometry/surface_sampling.h"
 #include "stocs/sim/depth_renderer.h"
+#include "stocs/sim/shape_meshes.h"
 #include "stocs/util/error.h"
 #include "test_support.h"
 
@@ -86,6 +88,46 @@ TEST(DepthRenderer, GeometryBehindTheCameraIsSkipped) {
   CameraIntrinsics bad = test::smallCamera();
   bad.fx = 0;
   EXPECT_THROW(DepthRenderer{bad}, InputError);
+}
+
+/// `mesh` with every vertex coloured `left` where x < 0 and `right` elsewhere.
+MeshData colouredByX(MeshData mesh, const VertexColour& left, const VertexColour& right) {
+  for (const Eigen::Vector3f& v : mesh.vertices) mesh.colours.push_back(v.x() < 0 ? left : right);
+  return mesh;
+}
+
+TEST(DepthRenderer, VertexColoursAreInterpolatedWhereTheColouredMeshShows) {
+  DepthRenderer r(test::smallCamera());
+  const MeshData box = boxMesh({0.1f, 0.1f, 0.02f});
+  r.draw(box, at(0, 0, 1.0f), 1);
+  EXPECT_TRUE(r.colours().empty());  // no colour drawn yet
+  const VertexColour red(255, 0, 0, 255), blue(0, 0, 255, 255);
+  r.draw(colouredByX(box, red, blue), at(0, 0, 0.8f), 2);
+  ASSERT_EQ(r.colours().type(), CV_8UC4);
+  // The front face at z = 0.79 m: red to blue linearly in x across its 10 cm.
+  for (int u : {72, 80, 88}) {
+    const float x = (u - 79.5f) * 0.79f / 200;
+    const cv::Vec4b c = r.colours().at<cv::Vec4b>(60, u);
+    EXPECT_NEAR(c[0], 255 * (0.05f - x) / 0.1f, 1.0f) << "u = " << u;
+    EXPECT_NEAR(c[2], 255 * (x + 0.05f) / 0.1f, 1.0f) << "u = " << u;
+    EXPECT_EQ(c[3], 255);
+  }
+  EXPECT_EQ(r.colours().at<cv::Vec4b>(0, 0), cv::Vec4b(0, 0, 0, 0));  // nothing drawn
+  // A nearer box without colours hides the left half: no known colour there.
+  r.draw(box, at(-0.05f, 0, 0.6f), 3);
+  EXPECT_EQ(r.colours().at<cv::Vec4b>(60, 72)[3], 0);
+  EXPECT_EQ(r.colours().at<cv::Vec4b>(60, 88)[3], 255);
+  // Vertices of unknown colour (alpha 0) do not count: blue only, or nothing.
+  DepthRenderer half(test::smallCamera());
+  half.draw(colouredByX(box, VertexColour(255, 0, 0, 0), blue), at(0, 0, 0.8f), 1);
+  EXPECT_EQ(half.colours().at<cv::Vec4b>(60, 72), cv::Vec4b(0, 0, 255, 255));
+  DepthRenderer none(test::smallCamera());
+  const VertexColour unknown(0, 0, 0, 0);
+  none.draw(colouredByX(box, unknown, unknown), at(0, 0, 0.8f), 1);
+  EXPECT_EQ(none.colours().at<cv::Vec4b>(60, 80)[3], 0);
+  MeshData short_of_colours = box;
+  short_of_colours.colours.resize(3, red);
+  EXPECT_THROW(none.draw(short_of_colours, at(0, 0, 0.8f), 1), InputError);
 }
 
 }  // namespace

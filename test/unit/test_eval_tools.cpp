@@ -101,12 +101,14 @@ TEST_F(EvalCliTest, KnownPosesGiveExactMetrics) {
   const auto targets = readCsv(root_ / "targets.csv");
   ASSERT_EQ(targets.size(), 3u);
   // The exact pose: every error 0.
-  for (const char* column : {"add_mm", "adds_mm", "rotation_deg", "translation_cm"}) {
+  for (const char* column : {"add_mm", "adds_mm", "mssd_mm", "rotation_deg", "translation_cm"}) {
     EXPECT_NEAR(number(targets[0], column), 0, 1e-3) << column;
   }
   EXPECT_EQ(targets[0].at("rt_success"), "1");
+  EXPECT_EQ(targets[0].at("mssd_success"), "1");
   // Shifted by (3, 4, 0) mm: every model point moves 5 mm.
   EXPECT_NEAR(number(targets[1], "add_mm"), 5, 1e-3);
+  EXPECT_NEAR(number(targets[1], "mssd_mm"), 5, 1e-3);
   EXPECT_NEAR(number(targets[1], "translation_cm"), 0.5, 1e-4);
   EXPECT_NEAR(number(targets[1], "rotation_deg"), 0, 1e-3);
   EXPECT_LE(number(targets[1], "adds_mm"), 5 + 1e-3);
@@ -123,6 +125,7 @@ TEST_F(EvalCliTest, KnownPosesGiveExactMetrics) {
   EXPECT_EQ(summary[6].at("results"), "all");
   EXPECT_EQ(summary[6].at("targets"), "3");
   EXPECT_NEAR(number(summary[6], "rt_success"), 2.0 / 3, 1e-5);
+  EXPECT_GT(number(summary[6], "mssd_recall"), 0);
 }
 
 TEST_F(EvalCliTest, MissingEstimateIsAFailure) {

@@ -65,6 +65,19 @@ TEST(MetricSummary, ByHand) {
   EXPECT_DOUBLE_EQ(s.median_translation_mm, 12.5);
 }
 
+TEST(MetricSummary, MssdSuccessAndRecall) {
+  TargetErrors close = found(5, 5, 5, 10, false), turned = close;
+  close.mssd_mm = 8;    // below 0.1 to 0.5 of the 100 mm diameter: 9 of the 10 thresholds
+  turned.mssd_mm = 32;  // below 0.35 to 0.5: 4 of them
+  const MetricSummary s = summarize({close, turned, missing()});
+  EXPECT_DOUBLE_EQ(s.mssd_success, 1.0 / 3);
+  EXPECT_DOUBLE_EQ(s.mssd_recall, (0.9 + 0.4 + 0) / 3);
+  close.mssd_mm = 10;  // bounds are strict
+  EXPECT_FALSE(close.mssdSuccess());
+  EXPECT_DOUBLE_EQ(close.mssdRecall(), 0.8);
+  EXPECT_TRUE(std::isnan(summarize({}).mssd_recall));
+}
+
 TEST(MetricSummary, SuccessBoundsAreStrict) {
   const TargetErrors at_bounds = found(10, 10, 10, 20, false);
   EXPECT_FALSE(at_bounds.addsSuccess());

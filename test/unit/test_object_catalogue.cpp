@@ -1,14 +1,19 @@
 // The project's own meshes: closed and outward-wound, the right size and symmetries, and meshes/
-// in the repository exactly what `stocs meshes` writes.
+// in the repository exactly what `stocs meshes` writes; the textured objects' prints break the
+// symmetries of their shapes.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/sim/bop_writer.h"
+#include "stocs/sim/shape_meshes.h"
+#include "stocs/util/error.h"
 #include "test_support.h"
 
 namespace stocs {
@@ -53,6 +58,42 @@ bool mapsOntoItself(const MeshData& mesh, const Eigen::Matrix4d& transform) {
   return true;
 }
 
+/// The mesh with coinciding vertices (to 0.1 um) merged: the shape of a painted mesh.
+MeshData welded(const MeshData& mesh) {
+  MeshData out;
+  std::map<std::tuple<long, long, long>, int> index;
+  std::vector<int> merged;
+  for (const Eigen::Vector3f& v : mesh.vertices) {
+    const Eigen::Vector3f q = v * 1e7f;
+    const auto key = std::make_tuple(std::lround(q.x()), std::lround(q.y()), std::lround(q.z()));
+    const auto [it, added] = index.emplace(key, static_cast<int>(out.vertices.size()));
+    if (added) out.vertices.push_back(v);
+    merged.push_back(it->second);
+  }
+  for (const Eigen::Vector3i& t : mesh.triangles) {
+    out.triangles.emplace_back(merged[t[0]], merged[t[1]], merged[t[2]]);
+  }
+  return out;
+}
+
+/// Mean position of the vertices whose colour is not the first vertex's (the body's): the print.
+Eigen::Vector3d printCentre(const MeshData& mesh) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (size_t i = 0; i < mesh.vertices.size(); ++i) {
+    if (mesh.colours[i] == mesh.colours[0]) continue;
+    sum += mesh.vertices[i].cast<double>();
+    ++count;
+  }
+  return count > 0 ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Constant(NAN);
+}
+
+Eigen::Vector3d meanPosition(const MeshData& mesh) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3f& v : mesh.vertices) sum += v.cast<double>();
+  return sum / static_cast<double>(mesh.vertices.size());
+}
+
 std::string fileBytes(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream s;
@@ -60,22 +101,27 @@ std::string fileBytes(const std::filesystem::path& file) {
   return s.str();
 }
 
+/// Closed (where painted, once coinciding vertices are merged), outward, centred on its bounding
+/// box and of a graspable size.
+void expectCentredSolid(const CatalogueObject& o) {
+  expectClosedAndConsistent(welded(o.mesh), o.name);
+  EXPECT_GT(signedVolume(o.mesh), 0) << o.name << " is wound inside out";
+  Eigen::Vector3f lo = o.mesh.vertices[0], hi = lo;
+  for (const Eigen::Vector3f& v : o.mesh.vertices) {
+    lo = lo.cwiseMin(v);
+    hi = hi.cwiseMax(v);
+  }
+  EXPECT_LT(((lo + hi) / 2).norm(), 1e-6f) << o.name;
+  EXPECT_GT(pointSetDiameter(o.mesh.vertices), 0.05f) << o.name;
+  EXPECT_LT(pointSetDiameter(o.mesh.vertices), 0.25f) << o.name;
+}
+
 TEST(ObjectCatalogue, EveryMeshIsClosedOutwardAndCentred) {
   const std::vector<CatalogueObject> objects = objectCatalogue();
   ASSERT_EQ(objects.size(), 6u);
   for (size_t i = 0; i < objects.size(); ++i) {
-    const CatalogueObject& o = objects[i];
-    EXPECT_EQ(o.id, static_cast<int>(i) + 1);
-    expectClosedAndConsistent(o.mesh, o.name);
-    EXPECT_GT(signedVolume(o.mesh), 0) << o.name << " is wound inside out";
-    Eigen::Vector3f lo = o.mesh.vertices[0], hi = lo;
-    for (const Eigen::Vector3f& v : o.mesh.vertices) {
-      lo = lo.cwiseMin(v);
-      hi = hi.cwiseMax(v);
-    }
-    EXPECT_LT(((lo + hi) / 2).norm(), 1e-6f) << o.name;
-    EXPECT_GT(pointSetDiameter(o.mesh.vertices), 0.05f) << o.name;
-    EXPECT_LT(pointSetDiameter(o.mesh.vertices), 0.25f) << o.name;
+    EXPECT_EQ(objects[i].id, static_cast<int>(i) + 1);
+    expectCentredSolid(objects[i]);
   }
 }
 
@@ -132,11 +178,64 @@ TEST(ObjectCatalogue, CommittedMeshesAreWhatTheGeneratorWrites) {
   EXPECT_EQ(files, 7);
 }
 
+TEST(TexturedCatalogue, ClosedOutwardCentredColouredAndWithoutSymmetries) {
+  const std::vector<CatalogueObject> objects = texturedCatalogue();
+  ASSERT_EQ(objects.size(), 3u);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const CatalogueObject& o = objects[i];
+    EXPECT_EQ(o.id, static_cast<int>(i) + 7);
+    expectCentredSolid(o);
+    ASSERT_EQ(o.mesh.colours.size(), o.mesh.vertices.size()) << o.name;
+    for (const VertexColour& c : o.mesh.colours) ASSERT_EQ(c[3], 255) << o.name;
+    EXPECT_FALSE(o.symmetries.symmetric()) << o.name << ": the print is kept by no symmetry";
+    EXPECT_TRUE(printCentre(o.mesh).allFinite()) << o.name << " has no print";
+  }
+  EXPECT_EQ(catalogueSelection("all").size(), 9u);
+  EXPECT_EQ(catalogueSelection("standard").size(), 6u);
+  EXPECT_THROW(catalogueSelection("plain"), InputError);
+}
+
+TEST(TexturedCatalogue, ThePrintsBreakTheSymmetriesOfTheShapes) {
+  const std::vector<CatalogueObject> objects = texturedCatalogue();
+  const auto turn = [](double deg, int axis) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() =
+        Eigen::AngleAxisd(deg * M_PI / 180, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+    return m;
+  };
+  // The box's half-turns and its near symmetry, the quarter turn about z (4 mm off); the can's
+  // half-turn across its axis and turns about it: each moves the print by more than 1 cm.
+  struct ShapeSymmetry {
+    size_t object;
+    Eigen::Matrix4d transform;
+    bool exact;  ///< maps the shape onto itself
+  };
+  const std::vector<ShapeSymmetry> shape_symmetries = {
+      {0, turn(180, 0), true}, {0, turn(180, 1), true}, {0, turn(180, 2), true},
+      {0, turn(90, 2), false}, {1, turn(180, 0), true}, {1, turn(90, 2), true},
+      {1, turn(180, 2), true}};
+  for (const ShapeSymmetry& s : shape_symmetries) {
+    const CatalogueObject& o = objects[s.object];
+    if (s.exact) {
+      EXPECT_TRUE(mapsOntoItself(welded(o.mesh), s.transform)) << o.name;
+    }
+    const Eigen::Vector3d print = printCentre(o.mesh);
+    EXPECT_GT((s.transform.topLeftCorner<3, 3>() * print - print).norm(), 0.01) << o.name << "\n"
+                                                                                << s.transform;
+  }
+  // The mug's print is on the side away from its handle.
+  const CatalogueObject& mug = objects[2];
+  ASSERT_FALSE(mug.handle.vertices.empty());
+  EXPECT_GT(meanPosition(mug.handle).x(), 0.03);
+  EXPECT_LT(printCentre(mug.mesh).x(), -0.02);
+  EXPECT_TRUE(objects[0].handle.vertices.empty());
+}
+
 TEST(ObjectCatalogue, WrittenModelsReadBackWithTheirInfo) {
   const auto root = test::scratchDir("dataset");
   std::filesystem::create_directories(root / "models");
   std::filesystem::create_directories(root / "test");
-  const std::vector<CatalogueObject> objects = objectCatalogue();
+  const std::vector<CatalogueObject> objects = catalogueSelection("all");
   writeModels(root / "models", objects);
   const BopDataset dataset(root);
   const std::map<int, BopObjectInfo> info = dataset.modelsInfo();

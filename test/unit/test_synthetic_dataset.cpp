@@ -63,6 +63,7 @@ TEST(SyntheticDataset, IsABopDatasetWithEveryFile) {
   ASSERT_EQ(gt.size(), 2u);
   const nlohmann::json gt_info =
       nlohmann::json::parse(readTextFile(ds.sceneDir(0) / "scene_gt_info.json"));
+  EXPECT_FALSE(fs::exists(ds.sceneDir(0) / "scene_handles.json"));  // no handled object
   for (const auto& [im, instances] : gt) {
     EXPECT_NEAR(cameras.at(im).K(0, 0), 615.0, 1e-9);
     EXPECT_DOUBLE_EQ(cameras.at(im).depth_scale, 0.1);
@@ -228,6 +229,57 @@ TEST(SyntheticDataset, BadRequestsAreRefused) {
   p.scenes = 0;
   EXPECT_THROW(writeSyntheticDataset(root / "y", p), InputError);
   EXPECT_THROW(writeSyntheticDataset(root / "z", smallDataset(1), root / "no_models"), InputError);
+  p = smallDataset(1);
+  p.catalogue = "plain";
+  EXPECT_THROW(writeSyntheticDataset(root / "w", p), InputError);
+}
+
+TEST(SyntheticDataset, TexturedCatalogueShowsPrintsAndRecordsHandles) {
+  const fs::path root = test::scratchDir("synth_textured");
+  SyntheticDatasetParams p = smallDataset(4);
+  p.catalogue = "textured";
+  p.scenes = 3;
+  writeSyntheticDataset(root, p);
+  const BopDataset ds(root);
+  ASSERT_EQ(ds.modelsInfo().size(), 3u);
+  EXPECT_EQ(ds.modelsInfo().begin()->first, 7);
+  EXPECT_FALSE(ds.modelsInfo().at(8).symmetric());
+  int visible = 0, hidden = 0;
+  for (int scene : ds.sceneIds()) {
+    const std::map<int, std::vector<BopGtInstance>> gt = ds.sceneGroundTruth(scene);
+    for (const auto& [im, instances] : gt) {
+      // The carton in its own colours (RGB 205, 175, 125 and a blue label), not its palette
+      // colour (BGR 160, 160, 60): redder than blue.
+      const cv::Mat rgb = cv::imread(ds.rgbPath(scene, im).string());
+      for (size_t i = 0; i < instances.size(); ++i) {
+        if (instances[i].obj_id != 7) continue;
+        const cv::Mat mask = cv::imread(ds.maskVisibPath(scene, im, static_cast<int>(i)).string(),
+                                        cv::IMREAD_GRAYSCALE);
+        const cv::Scalar mean = cv::mean(rgb, mask);
+        EXPECT_GT(mean[2], mean[0]) << "scene " << scene << " image " << im;
+      }
+    }
+    // Every printed mug instance has its handle's visibility, and only it.
+    const fs::path file = ds.sceneDir(scene) / "scene_handles.json";
+    const nlohmann::json handles =
+        fs::exists(file) ? nlohmann::json::parse(readTextFile(file)) : nlohmann::json::object();
+    for (const auto& [im, instances] : gt) {
+      const long mugs = std::count_if(instances.begin(), instances.end(),
+                                      [](const BopGtInstance& g) { return g.obj_id == 9; });
+      const nlohmann::json entries = handles.value(std::to_string(im), nlohmann::json::array());
+      ASSERT_EQ(static_cast<long>(entries.size()), mugs);
+      for (const nlohmann::json& h : entries) {
+        EXPECT_EQ(instances.at(h.at("gt_index").get<size_t>()).obj_id, 9);
+        const long all = h.at("px_count_all"), seen = h.at("px_count_visib");
+        EXPECT_GT(all, 0);
+        EXPECT_LE(seen, all);
+        EXPECT_EQ(h.at("handle_visible").get<bool>(), 2 * seen >= all);
+        (2 * seen >= all ? visible : hidden)++;
+      }
+    }
+  }
+  EXPECT_GT(visible, 0);
+  EXPECT_GT(hidden, 0);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 #pragma once
 // The figures a set of targets is summarised by (per object, per dataset, overall): success rates,
-// the area under the ADD-S accuracy-threshold curve up to 10 cm, and median errors. Missing
-// estimates count in every figure as infinite errors.
+// the area under the ADD-S accuracy-threshold curve up to 10 cm, BOP's MSSD recall, and median
+// errors. Missing estimates count in every figure as infinite errors.
 
 #include <cstddef>
 #include <vector>
@@ -19,6 +19,8 @@ struct MetricSummary {
   double adds_auc = 0;             ///< area under the ADD-S curve up to 10 cm, in [0, 1]
   double adds_success = 0;         ///< fraction with ADD-S < 10% of the diameter
   double add_or_adds_success = 0;  ///< fraction with ADD(-S) < 10% of the diameter
+  double mssd_success = 0;         ///< fraction with MSSD < 10% of the diameter
+  double mssd_recall = 0;          ///< BOP's MSSD recall averaged over 0.05..0.5 of the diameter
   double rt_success = 0;           ///< fraction with rotation < 10 deg and translation < 2 cm
   double median_adds_mm = 0;
   double median_rotation_deg = 0;

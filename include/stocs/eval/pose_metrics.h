@@ -3,6 +3,8 @@
 //   ADD:   mean distance between corresponding model points under the two poses.
 //   ADD-S: mean distance from each point under the estimate to the closest point under the truth,
 //          which forgives any symmetry of the shape.
+//   MSSD:  BOP's maximum symmetry-aware surface distance: the largest distance between
+//          corresponding points, for the symmetric ground-truth pose that makes it smallest.
 
 #include <Eigen/Geometry>
 #include <limits>
@@ -21,6 +23,12 @@ double addError(const std::vector<Eigen::Vector3f>& model_points, const RigidPos
 
 double addsError(const std::vector<Eigen::Vector3f>& model_points, const RigidPose& estimate,
                  const RigidPose& truth);
+
+/// MSSD: min over `symmetries` S (model frame; include the identity) of max over the points x of
+/// |(R_e x + t_e) - (R_g S_R x + R_g S_t + t_g)|, as the BOP toolkit defines it. +infinity without
+/// symmetries; 0 for an empty model.
+double mssdError(const std::vector<Eigen::Vector3f>& model_points, const RigidPose& estimate,
+                 const RigidPose& truth, const std::vector<RigidPose>& symmetries);
 
 /// ADD-S of many poses of one model. The kd-tree over the model points is built once: the closest
 /// point is searched in the model frame of the truth, where the truth's points are the model's.

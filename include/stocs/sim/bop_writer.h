@@ -26,6 +26,17 @@ struct BopGtInfo {
   int bbox_visib[4] = {-1, -1, -1, -1};  ///< x, y, width, height of the visible pixels
 };
 
+/// How much of a ground-truth instance's handle (a mug's) an image shows: the part whose view alone
+/// tells the pose of an otherwise symmetric shape (scene_handles.json, this project's own file).
+struct HandleVisibility {
+  int gt_index = 0;  ///< the instance's entry in the image's scene_gt.json list
+  int obj_id = 0;
+  long px_count_all = 0;    ///< pixels of the handle drawn alone
+  long px_count_visib = 0;  ///< of those, pixels where the handle is the visible surface
+  /// At least half of the handle's pixels visible.
+  bool visible() const { return px_count_all > 0 && 2 * px_count_visib >= px_count_all; }
+};
+
 /// scene_camera.json, scene_gt.json and scene_gt_info.json of a scene, keyed by image id.
 void writeSceneCameras(const std::filesystem::path& file,
                        const std::map<int, BopFrameCamera>& cameras);
@@ -33,5 +44,9 @@ void writeSceneGroundTruth(const std::filesystem::path& file,
                            const std::map<int, std::vector<BopGtInstance>>& gt);
 void writeSceneGtInfo(const std::filesystem::path& file,
                       const std::map<int, std::vector<BopGtInfo>>& info);
+/// scene_handles.json: per image id, a list of {gt_index, obj_id, px_count_all, px_count_visib,
+/// handle_visible}.
+void writeSceneHandles(const std::filesystem::path& file,
+                       const std::map<int, std::vector<HandleVisibility>>& handles);
 
 }  // namespace stocs

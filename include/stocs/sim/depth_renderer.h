@@ -1,7 +1,8 @@
 #pragma once
-// Z-buffer rasterisation of triangle meshes into a depth image, an instance label image and a
-// normal image, for generated scenes and for visible masks of objects at known poses. CPU only:
-// OpenCV images and Eigen maths are enough at 640 x 480.
+// Z-buffer rasterisation of triangle meshes into a depth image, an instance label image, a
+// normal image and, once a mesh with vertex colours is drawn, a colour image, for generated scenes
+// and for visible masks of objects at known poses. CPU only: OpenCV images and Eigen maths are
+// enough at 640 x 480.
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
@@ -19,7 +20,8 @@ class DepthRenderer {
 
   /// Adds `mesh` (metres, triangles wound counter-clockwise seen from outside) at `pose` (mesh to
   /// camera) with `label` (> 0). Nearer surfaces hide farther ones whatever the drawing order.
-  /// Triangles with a vertex closer than 1 cm to the camera plane are skipped.
+  /// Triangles with a vertex closer than 1 cm to the camera plane are skipped. A mesh with
+  /// colours (one per vertex, else InputError) paints colours() where it is visible.
   void draw(const MeshData& mesh, const Eigen::Isometry3f& pose, int label);
 
   /// Adds a model without faces (BOP point models): each point covers a square of half-side
@@ -34,11 +36,15 @@ class DepthRenderer {
   const cv::Mat& labels() const { return labels_; }
   /// Unit normal of the visible surface in the camera frame, facing the camera (CV_32FC3).
   const cv::Mat& normals() const { return normals_; }
+  /// Colour of the visible surface (CV_8UC4, RGBA as MeshData::colours), interpolated across its
+  /// triangle from the vertices of known colour; alpha 0 where the surface has no known colour.
+  /// Empty until a mesh with colours is drawn.
+  const cv::Mat& colours() const { return colours_; }
   const CameraIntrinsics& camera() const { return camera_; }
 
  private:
   CameraIntrinsics camera_;
-  cv::Mat depth_, labels_, normals_;
+  cv::Mat depth_, labels_, normals_, colours_;
 };
 
 }  // namespace stocs

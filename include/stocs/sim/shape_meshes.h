@@ -4,6 +4,8 @@
 // from outside the solid.
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "stocs/geometry/mesh.h"
@@ -26,6 +28,18 @@ MeshData cylinderMesh(float radius, float height, int segments);
 /// plane, from angle `from` to `to` (radians from +x towards +z), closed by flat end caps.
 MeshData tubeArcMesh(float arc_radius, float tube_radius, float from, float to, int arc_segments,
                      int tube_segments);
+
+/// A box of `size` centred at the origin whose faces are grids of squares about `cell` metres
+/// across (vertices shared within a face only): fine enough to paint a print on.
+MeshData gridBoxMesh(const Eigen::Vector3f& size, float cell);
+
+/// RGBA, as MeshData::colours.
+using VertexColour = Eigen::Matrix<uint8_t, 4, 1>;
+
+/// `mesh` with vertices of its own for every triangle, each triangle coloured by `paint` at its
+/// centroid: flat colours whose edges follow the triangles, a print on a finely divided mesh.
+MeshData paintedMesh(const MeshData& mesh,
+                     const std::function<VertexColour(const Eigen::Vector3f&)>& paint);
 
 /// Adds `part`, moved by `pose`, to `mesh` as a separate shell.
 void appendMesh(MeshData& mesh, const MeshData& part,

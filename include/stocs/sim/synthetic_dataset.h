@@ -39,6 +39,9 @@ struct SyntheticDatasetParams {
   SequenceParams sequence;
   /// Variation of the colour images: light, table and background, look-alike distractors.
   SceneLookParams look;
+  /// The generated objects without a models folder (catalogueSelectionNames()): "standard", or
+  /// "textured" / "all" for the vertex-coloured objects of texturedCatalogue().
+  std::string catalogue = "standard";
 
   /// Key, range, unit and meaning of every field but the camera and the depth noise model (the
   /// options of `stocs synth`).
@@ -55,7 +58,9 @@ struct SyntheticImageReport {
 };
 
 /// Writes the dataset to `root`, which must not exist or be empty. Models come from `models_dir`
-/// (its obj_*.ply and models_info.json are copied) or, when it is empty, from the object catalogue.
+/// (its obj_*.ply and models_info.json are copied) or, when it is empty, from the catalogue
+/// selection `params.catalogue`. A scene with a handled object (a mug) gets scene_handles.json:
+/// how much of each such instance's handle each image shows.
 /// `progress` is called after each image. Deterministic for a seed: the same files every time.
 /// Throws InputError naming the problem.
 void writeSyntheticDataset(const std::filesystem::path& root, const SyntheticDatasetParams& params,

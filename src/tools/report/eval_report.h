@@ -13,8 +13,9 @@
 
 namespace stocs::tools {
 
-/// Header and cells of a MetricSummary: targets, found, ADD-S AUC, the three success rates and the
-/// median ADD-S, rotation and translation errors.
+/// Header and cells of a MetricSummary: targets, found, ADD-S AUC, the ADD-S, ADD(-S) and MSSD
+/// success rates, the MSSD recall, the APC success rate and the median ADD-S, rotation and
+/// translation errors.
 std::vector<Cell> metricHeader();
 std::vector<Cell> metricCells(const MetricSummary& summary);
 
