@@ -49,7 +49,7 @@ Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
 
 PoseEstimate detectObject(const ObjectInput& in) {
   return detectObject(*in.cloud, static_cast<float>(in.camera->fx), *in.probability, *in.model,
-                      *in.params, in.boundary, in.camera);
+                      *in.params, in.boundary, in.camera, in.colour);
 }
 
 CameraIntrinsics frameCamera(const Frame& frame) {

@@ -48,7 +48,8 @@ void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpace
 
 PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
                              const cv::Mat& probability, const PreparedModel& model,
-                             const PipelineParams& params, const CameraIntrinsics* camera) {
+                             const PipelineParams& params, const CameraIntrinsics* camera,
+                             const cv::Mat* colour) {
   std::optional<CameraIntrinsics> recovered;  // the free-space check keeps a reference
   if (!camera) {                              // also for the confidence evidence
     try {
@@ -61,7 +62,7 @@ PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& c
   std::optional<FreeSpaceCheck> surface;  // ranks candidates when enabled, always gives evidence
   if (camera) surface.emplace(cloud, *camera, params.stocs.free_space);
   const bool rank_by_free_space = surface && params.stocs.free_space.enabled;
-  const FrameEvidence evidence{surface ? &*surface : nullptr};
+  const FrameEvidence evidence{surface ? &*surface : nullptr, colour};
   PoseEstimate result = StocsEstimator(model, params.stocs)
                             .search(segment, rank_by_free_space ? &*surface : nullptr, evidence);
   for (InstancePose& pose : result.instances) {
@@ -74,14 +75,15 @@ PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& c
 
 PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
                           const PreparedModel& model, const PipelineParams& params,
-                          const cv::Mat* boundary_map, const CameraIntrinsics* camera) {
+                          const cv::Mat* boundary_map, const CameraIntrinsics* camera,
+                          const cv::Mat* colour) {
   const auto start = std::chrono::steady_clock::now();
   const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   const double segment_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  PoseEstimate result = detectOnSegment(segment, cloud, probability, model, params, camera);
+  PoseEstimate result = detectOnSegment(segment, cloud, probability, model, params, camera, colour);
   result.stages.segment = segment_seconds;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

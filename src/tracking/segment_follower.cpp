@@ -54,7 +54,7 @@ PoseEstimate SegmentFollower::search() const {
   // The search is confined to the box around the lost pose: the segment is the box's, not the
   // frame's, so the per-segment step rather than the frame's entry point.
   return detectOnSegment(segment_, *in_.cloud, *in_.probability, *in_.model, *in_.params,
-                         in_.camera);
+                         in_.camera, in_.colour);
 }
 
 }  // namespace stocs

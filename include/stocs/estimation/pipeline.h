@@ -39,15 +39,18 @@ struct PipelineParams {
 PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv::Mat& probability,
                           const PreparedModel& model, const PipelineParams& params,
                           const cv::Mat* boundary_map = nullptr,
-                          const CameraIntrinsics* camera = nullptr);
+                          const CameraIntrinsics* camera = nullptr,
+                          const cv::Mat* colour = nullptr);
 
 /// detectObject after its soft segment: StoCS on `segment` (of `cloud` and `probability`), each
 /// instance turned to its canonical equivalent under the model's declared symmetries
-/// (canonicalPose) and judged (judgeInstance). Leaves the estimate's segment time and `seconds` to
-/// the caller.
+/// (canonicalPose) and judged (judgeInstance). `colour` (optional CV_8UC3 BGR registered with the
+/// cloud) helps tell a pose from its shape alternatives. Leaves the estimate's segment time and
+/// `seconds` to the caller.
 PoseEstimate detectOnSegment(const SoftSegment& segment, const OrganizedCloud& cloud,
                              const cv::Mat& probability, const PreparedModel& model,
-                             const PipelineParams& params, const CameraIntrinsics* camera);
+                             const PipelineParams& params, const CameraIntrinsics* camera,
+                             const cv::Mat* colour = nullptr);
 
 /// The confidence evidence of `pose` that needs the frame (its `lcp` must be set; see
 /// ConfidenceEvidence; consensus is left as it is), then its verdict (judgePose). Without

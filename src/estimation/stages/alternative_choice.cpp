@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "stocs/estimation/stages/colour_agreement.h"
 #include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/geometry/knn_index.h"
 
@@ -19,7 +20,8 @@ struct Candidate {
   LcpDetail lcp;
   float free = 0;         ///< share of the visible surface in free space
   float unexplained = 0;  ///< share of the segment (by network probability) far from the surface
-  float judgement = 0;    ///< higher is better
+  ColourAgreement colour;
+  float judgement = 0;  ///< higher is better
 };
 
 constexpr size_t kExplainedPoints = 300;  // segment points checked, an even subsample
@@ -44,6 +46,9 @@ class CandidateMeasure {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
     if (evidence_.surface) c.free = evidence_.surface->violation(context_.model, c.pose);
     c.unexplained = unexplained(c.pose, region);
+    if (evidence_.surface) {
+      c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
+    }
   }
 
  private:
@@ -94,12 +99,15 @@ void refine(Candidate& c, int region, const RefinementContext& context, long& st
 }
 
 /// The candidates' judgements: objective relative to the best's, less the shares in free space and
-/// left unexplained.
+/// left unexplained, plus the colour agreement where every candidate has colour evidence.
 void judge(std::vector<Candidate>& candidates) {
   float best = 0;
   for (const Candidate& c : candidates) best = std::max(best, c.lcp.score);
+  const bool coloured = std::all_of(candidates.begin(), candidates.end(),
+                                    [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
-    c.judgement = (best > 0 ? c.lcp.score / best : 0) - c.free - c.unexplained;
+    c.judgement = (best > 0 ? c.lcp.score / best : 0) - c.free - c.unexplained +
+                  (coloured ? c.colour.agreement : 0);
   }
 }
 

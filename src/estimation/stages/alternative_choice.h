@@ -19,7 +19,8 @@ constexpr float kAlternativeTie = 0.03f;
 /// Each instance against its model's shape alternatives (less the declared symmetries): every
 /// alternative pose refined by ICP and judged by the segment's shape under it (objective relative
 /// to the best alternative's), less the share of its visible surface in free space and the share
-/// of the segment it leaves unexplained. An alternative
+/// of the segment it leaves unexplained, plus its colour agreement (colour_agreement.h) where
+/// every candidate has colour evidence. An alternative
 /// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
 /// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
 /// and its covariance spans them. Adds the ICP steps taken to `steps`.

@@ -50,13 +50,15 @@ const std_msgs::Header& FrameMessages::header() const {
   return cloud ? cloud->header : depth->header;
 }
 
-/// The frame's messages converted: cloud, intrinsics, probability maps by object name, boundary.
+/// The frame's messages converted: cloud (with its colour, where it has an rgb field), intrinsics,
+/// probability maps by object name, boundary.
 stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
   const FrameMessages& messages = job.frame;
   stocs::Frame frame;
   // The intrinsics once per frame: every object's free-space check projects with them.
   if (messages.cloud) {
     frame.cloud = naming("cloud", [&] { return cloudFromMsg(*messages.cloud); });
+    frame.colour = naming("cloud", [&] { return colourFromCloudMsg(*messages.cloud); });
     frame.camera = naming("cloud", [&] { return intrinsicsFromCloud(frame.cloud); });
   } else {
     frame.cloud = naming(
