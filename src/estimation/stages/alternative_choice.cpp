@@ -15,6 +15,9 @@ const float kDistinctAngle = 15.0f * static_cast<float>(M_PI) / 180.0f;
 
 /// A candidate pose of one instance, refined and judged.
 struct Candidate {
+  explicit Candidate(const Eigen::Isometry3f& at, float from_shift = 0)
+      : pose(at), shift(from_shift) {}
+
   Eigen::Isometry3f pose;
   float shift = 0;  ///< of the shape alternative it came from (0: the instance itself)
   LcpDetail lcp;
@@ -157,9 +160,9 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
                const std::vector<const ShapeAlternative*>& alternatives,
                const RefinementContext& context, const CandidateMeasure& measure, int threads,
                long& steps) {
-  std::vector<Candidate> candidates{{instance.pose}};
+  std::vector<Candidate> candidates{Candidate(instance.pose)};
   for (const ShapeAlternative* a : alternatives) {
-    candidates.push_back({instance.pose * a->motion, a->shift});
+    candidates.emplace_back(instance.pose * a->motion, a->shift);
   }
   long taken = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : taken)
