@@ -98,7 +98,8 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
                                         {"uncertainty", 1000}}));
 
   FrameResult only_can = both;
-  only_can.objects[0].estimate.found = false;
+  only_can.objects[0].estimate.instances.clear();
+  only_can.objects[0].estimate.setFound();
   const visualization_msgs::MarkerArray second = toMarkers(only_can, setup, shown);
   ASSERT_EQ(second.markers.size(), 6u);
   std::set<MarkerKey> deleted;
@@ -185,7 +186,7 @@ TEST(ResultMessages, EstimateColoursAvoidTheGroundTruthsGreen) {
 
 /// `outcome` with `count` distinct instances at x = 0.1, 0.2, ... and falling scores.
 ObjectOutcome withInstances(size_t object, int count) {
-  ObjectOutcome o = outcome(object, true, 0.1f);
+  ObjectOutcome o = outcome(object, false, 0.1f);
   for (int k = 0; k < count; ++k) {
     stocs::InstancePose p;
     p.pose.translation() = Eigen::Vector3f(0.1f * (k + 1), 0, 1);
@@ -193,6 +194,7 @@ ObjectOutcome withInstances(size_t object, int count) {
     p.confidence = 0.9f - 0.1f * k;
     o.estimate.instances.push_back(p);
   }
+  o.estimate.setFound();
   return o;
 }
 
