@@ -9,6 +9,7 @@
 namespace stocs {
 namespace {
 
+/// A shape alternative this close in rotation to a declared symmetry is that symmetry.
 const float kSymmetryAngle = 5.0f * static_cast<float>(M_PI) / 180.0f;
 /// Two refined candidates closer in rotation are one pose.
 const float kDistinctAngle = 15.0f * static_cast<float>(M_PI) / 180.0f;
@@ -47,9 +48,9 @@ class CandidateMeasure {
 
   void operator()(Candidate& c, int region) const {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
-    if (evidence_.surface) c.free = evidence_.surface->violation(context_.model, c.pose);
     c.unexplained = unexplained(c.pose, region);
     if (evidence_.surface) {
+      c.free = evidence_.surface->violation(context_.model, c.pose);
       c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
     }
   }
