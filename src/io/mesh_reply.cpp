@@ -60,6 +60,7 @@ bool decodeMesh(const std::vector<char>& body, MeshData& mesh) {
   const char* at = body.data() + sizeof(counts);
   void* arrays[3] = {mesh.vertices.data(), mesh.triangles.data(), mesh.colours.data()};
   for (int k = 0; k < 3; ++k) {
+    if (counts[k] == 0) continue;  // an empty vector's data() may be null, not for memcpy
     std::memcpy(arrays[k], at, counts[k] * sizes[k]);
     at += counts[k] * sizes[k];
   }
