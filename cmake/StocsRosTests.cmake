@@ -47,9 +47,18 @@ add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/sequence/test/000000/scene_even
     --removal-frames 6 --occlusion-start 17 --occlusion-frames 5 --seed 3 --quiet
   DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   COMMENT "Generating the sequence of the ROS tests")
+# The textured scene (labelled box with its label toward the camera, printed can and mug, coloured
+# models and rgb/); after the writer above, which empties the whole folder first.
+add_custom_command(OUTPUT ${STOCS_ROS_TEST_DATA}/textured/test/000000/scene_gt.json
+  COMMAND ${CMAKE_COMMAND} -E remove_directory ${STOCS_ROS_TEST_DATA}/textured
+  COMMAND stocs synth --out ${STOCS_ROS_TEST_DATA}/textured --catalogue textured --objects 3
+    --distractors 1 --seed 11 --quiet
+  DEPENDS stocs ${STOCS_ROS_TEST_DATA}/synthetic.yaml
+  COMMENT "Generating the textured scene of the ROS tests")
 add_custom_target(stocs_ros_test_data DEPENDS ${STOCS_ROS_TEST_DATA}/synthetic.yaml
   ${STOCS_ROS_TEST_DATA}/synth_scene/test/000000/scene_gt.json
-  ${STOCS_ROS_TEST_DATA}/sequence/test/000000/scene_events.json)
+  ${STOCS_ROS_TEST_DATA}/sequence/test/000000/scene_events.json
+  ${STOCS_ROS_TEST_DATA}/textured/test/000000/scene_gt.json)
 add_dependencies(tests stocs_ros_test_data)
 
 # stocs_add_rostest_node(NAME SOURCES...): a gtest executable that rostest launch files run.
@@ -84,6 +93,8 @@ add_rostest(test/ros/robot_frame.test ARGS data:=${STOCS_ROS_TEST_DATA}
 add_rostest(test/ros/nodelet_multichannel.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/synth_scene_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
+add_rostest(test/ros/textured_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/segmentation_node.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_segmentation_node segmentation_node stocs_ros_test_data)

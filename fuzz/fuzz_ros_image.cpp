@@ -1,6 +1,6 @@
-// sensor_msgs/Image to probability, boundary and depth images (src/ros/image_conversion.cpp,
-// cloudFromDepthImage): every field and the data come from the input (layout in
-// ros_message_layout.h); each conversion must return or throw InputError.
+// sensor_msgs/Image to probability, boundary, colour and depth images
+// (src/ros/image_conversion.cpp, cloudFromDepthImage): every field and the data come from the input
+// (layout in ros_message_layout.h); each conversion must return or throw InputError.
 #include "fuzz_support.h"
 #include "ros_message_layout.h"
 #include "stocs_ros/common/cloud_conversion.h"
@@ -28,6 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   tolerateInputError([&] { stocs_ros::probabilityFromImage(msg, 10000.0); });
   tolerateInputError([&] { stocs_ros::probabilitiesFromChannels(msg, channels, 10000.0); });
   tolerateInputError([&] { stocs_ros::boundaryFromImage(msg); });
+  tolerateInputError([&] { stocs_ros::colourFromImage(msg); });
   tolerateInputError([&] { stocs_ros::cloudFromDepthImage(msg, info); });
   return 0;
 }

@@ -55,14 +55,30 @@ Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scen
   return Eigen::Isometry3d::Identity();
 }
 
-double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
-                         const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth) {
+namespace {
+
+/// `error` (ADD or ADD-S) of `pose` against `truth` over the vertices of the dataset's model of
+/// `obj_id`, as a fraction of the model's diameter.
+template <class Error>
+double diameterRatio(const std::filesystem::path& dataset, int obj_id,
+                     const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth, Error error) {
   const stocs::BopDataset ds(dataset);
   const stocs::MeshData model = stocs::loadMesh(ds.modelPath(obj_id).string(), 0.001f);
   const stocs::RigidPose estimate{pose.linear(), pose.translation()};
-  const double error =
-      stocs::addsError(model.vertices, estimate, {truth.linear(), truth.translation()});
-  return error / stocs::pointSetDiameter(model.vertices);
+  return error(model.vertices, estimate, stocs::RigidPose{truth.linear(), truth.translation()}) /
+         stocs::pointSetDiameter(model.vertices);
+}
+
+}  // namespace
+
+double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                         const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth) {
+  return diameterRatio(dataset, obj_id, pose, truth, stocs::addsError);
+}
+
+double addDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                        const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth) {
+  return diameterRatio(dataset, obj_id, pose, truth, stocs::addError);
 }
 
 int imageOf(const tf2_msgs::TFMessage& msg,

@@ -72,6 +72,9 @@ Eigen::Isometry3d groundTruthPose(const std::filesystem::path& dataset, int scen
 /// real-frame tests, which forgives what the shape cannot tell apart.
 double addsDiameterRatio(const std::filesystem::path& dataset, int obj_id,
                          const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
+/// The same with ADD, which forgives nothing: which way the object faces counts.
+double addDiameterRatio(const std::filesystem::path& dataset, int obj_id,
+                        const Eigen::Isometry3d& pose, const Eigen::Isometry3d& truth);
 
 /// The image whose ground truth (the scene publisher's gt_ frames) `msg` carries: the one with as
 /// many instances as `msg` has transforms, each at its translation in order; -1 when none matches.

@@ -54,10 +54,6 @@ Eigen::Matrix<double, 6, 6> covarianceOf(const ObjectPose& o) {
   return c;
 }
 
-std::optional<ObjectPoseArray> nextObjects(const std::string& node, double timeout) {
-  return waitForMessage<ObjectPoseArray>(node + "/objects", timeout);
-}
-
 dynamic_reconfigure::Config setMinConfidence(double value) {
   dynamic_reconfigure::Reconfigure srv;
   dynamic_reconfigure::DoubleParameter p;

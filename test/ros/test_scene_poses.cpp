@@ -2,10 +2,12 @@
 // ground-truth instance of the checked objects is within an ADD-S limit of one of the poses the
 // node reports on ~objects (instance recall), at least one pose per object is reported, and TF
 // carries every reported pose as <object> or <object>_<k>. Parameters (private): dataset (a path,
-// or a name under STOCS_DATASETS when real_data), scene, image, node, max_adds, min_recall, and
-// obj_ids (the objects to check; empty: every object of the frame's ground truth), and
-// segmentation (labels, masks or boxes: ~estimate is also called with the played cloud and that
-// segmentation message, and must find the objects the same way; cloud_topic names the cloud).
+// or a name under STOCS_DATASETS when real_data), scene, image, node, max_adds, metric (adds, or
+// add: which way the object faces counts), decided (the checked poses name no ambiguity: the
+// data told their turn), min_recall, and obj_ids (the objects to check; empty: every object of the
+// frame's ground truth), and segmentation (labels, masks or boxes: ~estimate is also called with
+// the played cloud and that segmentation message, and must find the objects the same way;
+// cloud_topic names the cloud).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/PointCloud2.h>
@@ -33,6 +35,8 @@ struct Expected {
   bool real_data = false;
   int scene = 0, image = 0;
   double max_adds = 0.1;  ///< fraction of the diameter: the evaluation's success threshold
+  bool add = false;       ///< judge by ADD instead of ADD-S
+  bool decided = false;   ///< the checked objects' poses must name no ambiguity
   double min_recall = 1.0;
   std::vector<int> obj_ids;
   std::string segmentation;  ///< labels, masks or boxes: also test ~estimate with that input
@@ -68,7 +72,8 @@ void expectInstancesFound(const std::filesystem::path& dataset,
     for (const Eigen::Isometry3d& t : instances) {
       double best = std::numeric_limits<double>::infinity();
       for (const Eigen::Isometry3d& pose : reported[obj_id]) {
-        best = std::min(best, addsDiameterRatio(dataset, obj_id, pose, t));
+        best = std::min(best, g_expected.add ? addDiameterRatio(dataset, obj_id, pose, t)
+                                             : addsDiameterRatio(dataset, obj_id, pose, t));
       }
       if (best < g_expected.max_adds) ++matched;
     }
@@ -77,8 +82,8 @@ void expectInstancesFound(const std::filesystem::path& dataset,
               << " instances found, from " << reported[obj_id].size() << " poses\n";
     EXPECT_GE(recall, g_expected.min_recall)
         << "object " << obj_id << ": " << matched << " of " << instances.size()
-        << " instances within ADD-S " << g_expected.max_adds << " of the diameter, from "
-        << reported[obj_id].size() << " poses";
+        << " instances within " << (g_expected.add ? "ADD " : "ADD-S ") << g_expected.max_adds
+        << " of the diameter, from " << reported[obj_id].size() << " poses";
   }
 }
 
@@ -102,6 +107,9 @@ TEST(ScenePoses, EveryInstanceIsFoundNearItsTruth) {
   for (const ObjectPose& o : message->objects) {
     const Eigen::Isometry3d pose = poseToEigen(o.pose.pose);
     reported[o.id].push_back(pose);
+    if (g_expected.decided && truth.count(o.id)) {
+      EXPECT_EQ(o.ambiguity, "") << o.name << " " << o.instance;
+    }
     const std::string frame = instanceName(o.name, o.instance);
     const Eigen::Isometry3d on_tf = tf2::transformToEigen(buffer.lookupTransform(
         message->header.frame_id, frame, message->header.stamp, ros::Duration(10.0)));
@@ -172,6 +180,14 @@ int main(int argc, char** argv) {
   pnh.param("image", g_expected.image, g_expected.image);
   pnh.param("max_adds", g_expected.max_adds, g_expected.max_adds);
   pnh.param("segmentation", g_expected.segmentation, g_expected.segmentation);
+  pnh.param("decided", g_expected.decided, g_expected.decided);
+  std::string metric = "adds";
+  pnh.param("metric", metric, metric);
+  if (metric != "adds" && metric != "add") {
+    std::cerr << "metric '" << metric << "': expected adds or add\n";
+    return 2;
+  }
+  g_expected.add = metric == "add";
   pnh.param("cloud_topic", g_expected.cloud_topic, g_expected.cloud_topic);
   ros::AsyncSpinner spinner(2);
   spinner.start();

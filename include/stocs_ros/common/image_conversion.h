@@ -1,7 +1,7 @@
 #pragma once
 // sensor_msgs/Image to the OpenCV images the core takes: probability maps (one per object, or one
-// multi-channel image with a channel per object) and instance boundary maps. Errors are
-// stocs::InputError with the encoding or size at fault.
+// multi-channel image with a channel per object), instance boundary maps and the colour image.
+// Errors are stocs::InputError with the encoding or size at fault.
 
 #include <sensor_msgs/Image.h>
 
@@ -23,6 +23,11 @@ cv::Mat probabilityFromImage(const sensor_msgs::ImageConstPtr& msg, double uint1
 /// 8UC<n>), scaled as in probabilityFromImage.
 std::vector<cv::Mat> probabilitiesFromChannels(const sensor_msgs::ImageConstPtr& msg,
                                                size_t channels, double uint16_scale);
+
+/// The registered colour image as the core takes it (CV_8UC3 BGR, a copy) from rgb8, bgr8, rgba8,
+/// bgra8 or their 16-bit forms (scaled to 8 bits); any other encoding, mono included (it holds no
+/// colour evidence), is an InputError.
+cv::Mat colourFromImage(const sensor_msgs::ImageConstPtr& msg);
 
 /// Instance boundary map (CV_8UC1, >= 128 interior) from mono8/8UC1.
 cv::Mat boundaryFromImage(const sensor_msgs::ImageConstPtr& msg);

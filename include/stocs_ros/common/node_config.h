@@ -36,6 +36,9 @@ struct InputConfig {
   std::vector<std::string> channels;
   double uint16_scale = 10000;  ///< mono16 probability = value / uint16_scale
   bool boundary = false;        ///< subscribe ~boundary for instance regions
+  /// Subscribe ~rgb, the colour image registered with the depth (REP 118), for telling a coloured
+  /// model's pose from its shape alternatives; a cloud's rgb field serves without it.
+  bool colour = false;
   /// kLabels, kMasks, kBoxes: the object name of each class id in order (class 0 first); "-"
   /// marks a class to ignore. Empty: an object's class id is its `id`.
   std::vector<std::string> labels;

@@ -28,6 +28,7 @@ struct FrameMessages {
   std::vector<sensor_msgs::ImageConstPtr> probabilities;
   sensor_msgs::ImageConstPtr multichannel;  ///< input.probability: multichannel
   sensor_msgs::ImageConstPtr boundary;      ///< optional instance boundary map
+  sensor_msgs::ImageConstPtr colour;        ///< optional colour image registered with the depth
   SegmentationMessages segmentation;        ///< input.probability: labels, masks or boxes
 
   /// The header of the cloud or depth image: the outputs' frame and stamp.
@@ -56,8 +57,12 @@ struct FrameResult {
   std::optional<stocs::TrackingCounts> tracking;  ///< when tracked (trackJob)
 };
 
+/// The job's messages as the core's frame: cloud, colour (the colour image, else the cloud's rgb
+/// field), intrinsics, probability maps by object name, boundary; errors as detectJob's.
+stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config);
+
 /// Throws stocs::InputError naming the input at fault (cloud, an object's probability image, the
-/// boundary map) for bad encodings, sizes or parameters.
+/// boundary map, the colour image) for bad encodings, sizes or parameters.
 FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup);
 
 /// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp:

@@ -1,9 +1,10 @@
 #pragma once
 // The node's inputs: subscribes them in the private namespace (the depth input, the segmentation
-// in the configured form, the optional boundary map), matches their messages by stamp into frames
-// (StampSynchronizer), keeps the latest frame for ~estimate, and hands every matched frame on.
-// Counts received, dropped and matched messages and time jumps in NodeStatistics. One lock guards
-// the synchronizer and the latest frame; subscription callbacks may run on several threads.
+// in the configured form, the optional boundary map and colour image), matches their messages by
+// stamp into frames (StampSynchronizer), keeps the latest frame for ~estimate, and hands every
+// matched frame on. Counts received, dropped and matched messages and time jumps in NodeStatistics.
+// One lock guards the synchronizer and the latest frame; subscription callbacks may run on several
+// threads.
 
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -69,6 +70,7 @@ class FrameInputs {
     kProbability,
     kMultichannel,
     kBoundary,
+    kColour,
     kLabels,
     kLabelConfidence,
     kMasks,

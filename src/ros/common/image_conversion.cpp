@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <sensor_msgs/image_encodings.h>
 
+#include <set>
+
 #include "stocs/io/probability_image.h"
 #include "stocs/util/error.h"
 
@@ -34,25 +36,46 @@ int pixelType(const std::string& encoding) {
 
 }  // namespace
 
-cv::Mat imageView(const sensor_msgs::ImageConstPtr& msg) {
-  const int type = pixelType(msg->encoding);
-  const size_t row_bytes = static_cast<size_t>(msg->width) * CV_ELEM_SIZE(type);
-  if (msg->width == 0 || msg->height == 0) {
-    throw InputError(fmt::format("image is empty ({}x{})", msg->width, msg->height));
+namespace {
+
+/// Throws InputError unless the image is non-empty, its step a whole number of `type`'s channel
+/// values and at least a row, and its data exactly step x height bytes: cv_bridge and cv::Mat throw
+/// their own exceptions otherwise (found by fuzz_ros_image).
+void checkLayout(const sensor_msgs::Image& msg, int type) {
+  const size_t row_bytes = static_cast<size_t>(msg.width) * CV_ELEM_SIZE(type);
+  if (msg.width == 0 || msg.height == 0) {
+    throw InputError(fmt::format("image is empty ({}x{})", msg.width, msg.height));
   }
-  // cv_bridge and cv::Mat throw their own exceptions unless the data is exactly step x height
-  // bytes and the step a whole number of channel values (found by fuzz_ros_image).
-  if (msg->step % CV_ELEM_SIZE1(type) != 0) {
+  if (msg.step % CV_ELEM_SIZE1(type) != 0) {
     throw InputError(fmt::format("image '{}' has step {}, not a multiple of its {}-byte values",
-                                 msg->encoding, msg->step, CV_ELEM_SIZE1(type)));
+                                 msg.encoding, msg.step, CV_ELEM_SIZE1(type)));
   }
-  if (msg->step < row_bytes || msg->data.size() != static_cast<size_t>(msg->step) * msg->height) {
+  if (msg.step < row_bytes || msg.data.size() != static_cast<size_t>(msg.step) * msg.height) {
     throw InputError(fmt::format(
         "image {}x{} '{}' has step {} and {} data bytes; it needs a step of at least {} and "
         "step x height data bytes",
-        msg->width, msg->height, msg->encoding, msg->step, msg->data.size(), row_bytes));
+        msg.width, msg.height, msg.encoding, msg.step, msg.data.size(), row_bytes));
   }
+}
+
+}  // namespace
+
+cv::Mat imageView(const sensor_msgs::ImageConstPtr& msg) {
+  checkLayout(*msg, pixelType(msg->encoding));
   return cv_bridge::toCvShare(msg)->image;
+}
+
+cv::Mat colourFromImage(const sensor_msgs::ImageConstPtr& msg) {
+  static const std::set<std::string> kColourEncodings = {enc::RGB8,   enc::BGR8,  enc::RGBA8,
+                                                         enc::BGRA8,  enc::RGB16, enc::BGR16,
+                                                         enc::RGBA16, enc::BGRA16};
+  if (!kColourEncodings.count(msg->encoding)) {
+    throw InputError(fmt::format(
+        "colour image has encoding '{}'; expected rgb8, bgr8, rgba8, bgra8 or their 16-bit forms",
+        msg->encoding));
+  }
+  checkLayout(*msg, cv_bridge::getCvType(msg->encoding));
+  return cv_bridge::toCvCopy(msg, enc::BGR8)->image;
 }
 
 cv::Mat probabilityFromImage(const sensor_msgs::ImageConstPtr& msg, double uint16_scale) {

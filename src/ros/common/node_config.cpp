@@ -299,6 +299,9 @@ const stocs::ParamSet<InputConfig>& InputConfig::schema() {
                "mono16 probability = value / uint16_scale")
           .add(&InputConfig::boundary, "boundary",
                "also wait for ~boundary (mono8, 255 interior) and use its regions")
+          .add(&InputConfig::colour, "colour",
+               "also wait for ~rgb, the colour image registered with the depth (rgb8, bgr8, ...), "
+               "instead of a cloud's rgb field")
           .add(&InputConfig::labels, "labels", "", std::nullopt,
                "labels, masks, boxes: the object name of each class id from 0, \"-\" to ignore "
                "one; empty: class id = object id")

@@ -50,8 +50,6 @@ const std_msgs::Header& FrameMessages::header() const {
   return cloud ? cloud->header : depth->header;
 }
 
-/// The frame's messages converted: cloud (with its colour, where it has an rgb field), intrinsics,
-/// probability maps by object name, boundary.
 stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
   const FrameMessages& messages = job.frame;
   stocs::Frame frame;
@@ -72,6 +70,19 @@ stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config) {
   }
   if (messages.boundary) {
     frame.boundary = naming("boundary image", [&] { return boundaryFromImage(messages.boundary); });
+  }
+  if (messages.colour) {
+    frame.colour = naming("colour image", [&] {
+      cv::Mat colour = colourFromImage(messages.colour);
+      if (colour.cols != static_cast<int>(frame.cloud.width) ||
+          colour.rows != static_cast<int>(frame.cloud.height)) {
+        throw InputError(
+            fmt::format("{}x{} image does not fit the {}x{} depth: it must be the "
+                        "colour registered with the depth, pixel for pixel",
+                        colour.cols, colour.rows, frame.cloud.width, frame.cloud.height));
+      }
+      return colour;
+    });
   }
   return frame;
 }

@@ -31,6 +31,7 @@ FrameInputs::FrameInputs(ros::NodeHandle pnh, const NodeConfig& config)
       }
   }
   if (config.input.boundary) add("boundary", Kind::kBoundary);
+  if (config.input.colour) add("rgb", Kind::kColour);
   sync_ = std::make_unique<StampSynchronizer<Message>>(inputs_.size(), config.input.sync);
 }
 
@@ -154,6 +155,9 @@ FrameMessages FrameInputs::toFrame(std::vector<Message>& messages) const {
         break;
       case Kind::kBoundary:
         frame.boundary = std::get<sensor_msgs::ImageConstPtr>(m);
+        break;
+      case Kind::kColour:
+        frame.colour = std::get<sensor_msgs::ImageConstPtr>(m);
         break;
       case Kind::kLabels:
         frame.segmentation.labels = std::get<sensor_msgs::ImageConstPtr>(m);

@@ -109,6 +109,9 @@ FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>
   if (given(request.boundary)) {
     frame.boundary = boost::make_shared<sensor_msgs::Image>(std::move(request.boundary));
   }
+  if (given(request.colour)) {
+    frame.colour = boost::make_shared<sensor_msgs::Image>(std::move(request.colour));
+  }
   return frame;
 }
 

@@ -260,6 +260,22 @@ TEST_F(FrameEstimation, TrackedFramesCarryTheirStatesIntoTheMessages) {
             ObjectPose::DETECTED);
 }
 
+TEST_F(FrameEstimation, ColourImageReachesTheFrameBeforeTheCloudsColour) {
+  const auto s = setup("input: {colour: true}\n");
+  EstimationJob job = cloudJob();
+  cv::Mat cloud_colour(240, 320, CV_8UC3, cv::Scalar(1, 2, 3));
+  auto cloud =
+      boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(frame_->cloud, cloud_colour));
+  cloud->header = job.frame.cloud->header;
+  job.frame.cloud = cloud;
+  EXPECT_EQ(convertFrame(job, s->config).colour.at<cv::Vec3b>(5, 7), cv::Vec3b(1, 2, 3));
+  job.frame.colour = image("rgb8", cv::Mat(240, 320, CV_8UC3, cv::Scalar(30, 20, 10)));
+  const stocs::Frame frame = convertFrame(job, s->config);
+  ASSERT_EQ(frame.colour.type(), CV_8UC3);
+  EXPECT_EQ(frame.colour.at<cv::Vec3b>(5, 7), cv::Vec3b(10, 20, 30));
+  expectFoundNearTruth(detectJob(job, *s));
+}
+
 TEST_F(FrameEstimation, BadInputsAreNamed) {
   const auto s = setup("");
   EstimationJob colour = cloudJob();
@@ -289,6 +305,17 @@ TEST_F(FrameEstimation, BadInputsAreNamed) {
   EstimationJob wrong_boundary = cloudJob();
   wrong_boundary.frame.boundary = image("mono16", cv::Mat(240, 320, CV_16UC1, cv::Scalar(0)));
   EXPECT_NE(errorOf(wrong_boundary, *s).find("boundary image: "), std::string::npos);
+
+  EstimationJob mono_colour = cloudJob();
+  mono_colour.frame.colour = image("mono8", cv::Mat(240, 320, CV_8UC1, cv::Scalar(0)));
+  EXPECT_NE(errorOf(mono_colour, *s).find("colour image: colour image has encoding 'mono8'"),
+            std::string::npos)
+      << errorOf(mono_colour, *s);
+  EstimationJob small_colour = cloudJob();
+  small_colour.frame.colour = image("rgb8", cv::Mat(120, 160, CV_8UC3, cv::Scalar(0)));
+  EXPECT_NE(errorOf(small_colour, *s).find("colour image: 160x120 image does not fit the 320x240"),
+            std::string::npos)
+      << errorOf(small_colour, *s);
 
   EstimationJob budget = cloudJob();
   budget.time_budget = 7200;

@@ -1,4 +1,4 @@
-// Probability and boundary images from sensor_msgs/Image: every accepted encoding and the
+// Probability, boundary and colour images from sensor_msgs/Image: every accepted encoding and the
 // rejected ones, with the encoding or size in the message.
 #include <cv_bridge/cv_bridge.h>
 #include <gtest/gtest.h>
@@ -114,6 +114,37 @@ TEST(ImageConversion, BoundaryMapsAreMono8) {
               boundaryFromImage(image("mono16", cv::Mat(2, 3, CV_16UC1)));
             }).find("'mono16'"),
             std::string::npos);
+}
+
+TEST(ImageConversion, ColourImagesBecomeBgr) {
+  const cv::Mat bgr(2, 3, CV_8UC3, cv::Scalar(10, 20, 30));
+  const cv::Vec3b expected(10, 20, 30);
+  EXPECT_EQ(colourFromImage(image("bgr8", bgr)).at<cv::Vec3b>(1, 2), expected);
+  const cv::Mat rgb(2, 3, CV_8UC3, cv::Scalar(30, 20, 10));
+  EXPECT_EQ(colourFromImage(image("rgb8", rgb)).at<cv::Vec3b>(1, 2), expected);
+  const cv::Mat rgba(2, 3, CV_8UC4, cv::Scalar(30, 20, 10, 255));
+  EXPECT_EQ(colourFromImage(image("rgba8", rgba)).at<cv::Vec3b>(0, 0), expected);
+  const cv::Mat bgr16(2, 3, CV_16UC3, cv::Scalar(10 * 257, 20 * 257, 30 * 257));
+  const cv::Mat from16 = colourFromImage(image("bgr16", bgr16));
+  EXPECT_EQ(from16.type(), CV_8UC3);
+  EXPECT_EQ(from16.at<cv::Vec3b>(1, 1), expected);
+}
+
+TEST(ImageConversion, BadColourImagesAreNamed) {
+  EXPECT_NE(errorOf([&] {
+              colourFromImage(image("mono8", cv::Mat(2, 3, CV_8UC1, cv::Scalar(0))));
+            }).find("colour image has encoding 'mono8'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] {
+              colourFromImage(image("32FC1", cv::Mat(2, 3, CV_32FC1, cv::Scalar(0))));
+            }).find("'32FC1'"),
+            std::string::npos);
+  sensor_msgs::ImagePtr truncated = image("rgb8", cv::Mat(2, 3, CV_8UC3, cv::Scalar(0)));
+  truncated->data.resize(5);
+  EXPECT_NE(errorOf([&] { colourFromImage(truncated); }).find("5 data bytes"), std::string::npos);
+  sensor_msgs::ImagePtr empty = image("bgr8", cv::Mat(2, 3, CV_8UC3, cv::Scalar(0)));
+  empty->height = 0;
+  EXPECT_NE(errorOf([&] { colourFromImage(empty); }).find("empty"), std::string::npos);
 }
 
 }  // namespace
