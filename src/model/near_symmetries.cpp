@@ -80,6 +80,37 @@ float rotationAngle(const Eigen::Matrix3f& r) {
 
 }  // namespace
 
+namespace {
+
+// Bounds the compositions (a lathe's turns and flips give 23; 47 leaves room for a shape more
+// symmetric than the catalogue's).
+constexpr size_t kMaxAlternatives = 47;
+
+/// Adds `turn` to `out` when it fits (as it is, else aligned onto the model) and is distinct from
+/// the identity and from every motion kept before.
+void addIfAlternative(const ObjectModel& model, const KnnIndex& index,
+                      const Eigen::Isometry3f& turn, std::vector<ShapeAlternative>& out) {
+  const auto seen = [&](const Eigen::Isometry3f& motion) {
+    return rotationAngle(motion.linear()) < kDistinctAngle ||  // identity, or pulled back to it
+           std::any_of(out.begin(), out.end(), [&](const ShapeAlternative& s) {
+             return rotationAngle(s.motion.linear().transpose() * motion.linear()) < kDistinctAngle;
+           });
+  };
+  if (seen(turn)) return;
+  // An exact turn stays as it is; one off the body's axis (a mug's) is aligned onto the model.
+  Eigen::Isometry3f motion = turn;
+  float shift = meanDistance(model, index, turn);
+  if (shift >= kAlternativeShare * model.sampling_radius) {
+    motion = alignOnto(model, index, turn);
+    shift = meanDistance(model, index, motion);
+  }
+  if (shift >= kAlternativeShare * model.sampling_radius || seen(motion)) return;
+  const Eigen::AngleAxisf rotation(motion.linear());
+  out.push_back({motion, rotation.axis(), rotation.angle(), shift});
+}
+
+}  // namespace
+
 std::vector<ShapeAlternative> findShapeAlternatives(const ObjectModel& model) {
   std::vector<ShapeAlternative> out;
   if (model.size() < 4 || !(model.sampling_radius > 0)) return out;
@@ -89,23 +120,16 @@ std::vector<ShapeAlternative> findShapeAlternatives(const ObjectModel& model) {
   for (int a = 0; a < 3; ++a) {
     // Half and quarter turns first: an exact one is kept as it is, before an aligned neighbour.
     for (const int step : {6, 3, 9, 1, 2, 4, 5, 7, 8, 10, 11}) {
-      // An exact turn stays as it is; one off the body's axis (a mug's) is aligned onto the model.
-      const Eigen::Isometry3f turn =
-          turnAbout(centre, axes.col(a).normalized(), static_cast<float>(M_PI / 6 * step));
-      Eigen::Isometry3f motion = turn;
-      float shift = meanDistance(model, index, turn);
-      if (shift >= kAlternativeShare * model.sampling_radius) {
-        motion = alignOnto(model, index, turn);
-        shift = meanDistance(model, index, motion);
-      }
-      if (shift >= kAlternativeShare * model.sampling_radius) continue;
-      if (rotationAngle(motion.linear()) < kDistinctAngle) continue;  // pulled back to identity
-      const bool seen = std::any_of(out.begin(), out.end(), [&](const ShapeAlternative& s) {
-        return rotationAngle(s.motion.linear().transpose() * motion.linear()) < kDistinctAngle;
-      });
-      if (seen) continue;
-      const Eigen::AngleAxisf rotation(motion.linear());
-      out.push_back({motion, rotation.axis(), rotation.angle(), shift});
+      addIfAlternative(
+          model, index,
+          turnAbout(centre, axes.col(a).normalized(), static_cast<float>(M_PI / 6 * step)), out);
+    }
+  }
+  // Compositions: a box's quarter turn about one axis after a half turn about another is a half
+  // turn about a diagonal, which no principal axis gives.
+  for (size_t i = 0; i < out.size() && out.size() < kMaxAlternatives; ++i) {
+    for (size_t j = 0; j < out.size() && out.size() < kMaxAlternatives; ++j) {
+      addIfAlternative(model, index, out[i].motion * out[j].motion, out);
     }
   }
   return out;

@@ -57,6 +57,24 @@ TEST(ShapeAlternatives, BoxHalfTurnsAboutEachAxis) {
   }
 }
 
+// A box nearly square seen from above (the labelled box, 72 x 68 x 45 mm): its quarter turns about
+// its short axis composed with a half turn about another give half turns about the diagonals of
+// its top, which no principal axis gives and which its label may have to tell.
+TEST(ShapeAlternatives, NearlySquareBoxGetsItsDiagonalHalfTurns) {
+  const std::vector<CatalogueObject> textured = texturedCatalogue();
+  const auto labelled = std::find_if(textured.begin(), textured.end(),
+                                     [](const CatalogueObject& o) { return o.id == 7; });
+  ASSERT_NE(labelled, textured.end());
+  const ObjectModel box = prepareModel(labelled->mesh, ModelSamplingParams{});
+  const std::vector<ShapeAlternative> turns = findShapeAlternatives(box);
+  for (const Eigen::Vector3f& diagonal :
+       {Eigen::Vector3f(1, 1, 0).normalized(), Eigen::Vector3f(1, -1, 0).normalized()}) {
+    EXPECT_TRUE(std::any_of(turns.begin(), turns.end(), [&](const ShapeAlternative& t) {
+      return aboutAxis(t, diagonal) && std::abs(degrees(t.angle) - 180.0f) < 5.0f;
+    })) << diagonal.transpose();
+  }
+}
+
 /// A mug standing on a table, seen from 0.6 m at 35 degrees elevation, its handle turned by
 /// `handle_azimuth` from the direction the camera looks along (0: pointing away, hidden behind
 /// the body; 90 degrees: to the side, in plain view).

@@ -36,8 +36,9 @@ struct ShapeAlternative {
 /// Turns by multiples of 30 degrees about the samples' principal axes through their centre, kept
 /// when the turned samples lie within the sampling radius of the surface on average, else aligned
 /// again onto the model by a few point-to-point ICP steps (an axis off the centre, as a mug's body
-/// beside its handle) and kept if they then do; a kept motion turns by at least 15 degrees and is
-/// at least 15 degrees from every motion kept before. Deterministic; a few tens of milliseconds.
+/// beside its handle) and kept if they then do; then their compositions, kept the same way (at most
+/// 47 in all). A kept motion turns by at least 15 degrees and is at least 15 degrees from every
+/// motion kept before. Deterministic; a few tens of milliseconds.
 std::vector<ShapeAlternative> findShapeAlternatives(const ObjectModel& model);
 
 /// What `alternatives` of one pose say to a user: "fits as well turned by 90, 180 deg about model

@@ -1,6 +1,7 @@
 #include "alternative_choice.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "stocs/estimation/stages/colour_agreement.h"
 #include "stocs/estimation/stages/pose_covariance.h"
@@ -20,7 +21,8 @@ struct Candidate {
       : pose(at), shift(from_shift) {}
 
   Eigen::Isometry3f pose;
-  float shift = 0;  ///< of the shape alternative it came from (0: the instance itself)
+  std::optional<IcpRun> run;  ///< its refinement, once begun
+  float shift = 0;            ///< of the shape alternative it came from (0: the instance itself)
   LcpDetail lcp;
   float free = 0;         ///< share of the visible surface in free space
   float unexplained = 0;  ///< share of the segment (by network probability) far from the surface
@@ -79,39 +81,49 @@ class CandidateMeasure {
   std::vector<size_t> checked_;
 };
 
-/// The alternatives of `model` that are not declared symmetries (those are the same pose).
+/// The alternatives of `model` that are distinct poses: not a declared symmetry (the same pose),
+/// nor one kept before followed by a declared symmetry (the same pose as that one).
 std::vector<const ShapeAlternative*> distinctAlternatives(const PreparedModel& model) {
   std::vector<const ShapeAlternative*> out;
   const Eigen::Vector3f centre = sampleCentre(model.model);
   const float distance = model.model.sampling_radius;
   for (const ShapeAlternative& a : model.shape_alternatives) {
-    if (!isSymmetry(a.motion, model.symmetries, centre, kSymmetryAngle, distance)) {
-      out.push_back(&a);
-    }
+    if (isSymmetry(a.motion, model.symmetries, centre, kSymmetryAngle, distance)) continue;
+    const bool kept = std::any_of(out.begin(), out.end(), [&](const ShapeAlternative* k) {
+      return isSymmetry(k->motion.inverse() * a.motion, model.symmetries, centre, kDistinctAngle,
+                        distance);
+    });
+    if (!kept) out.push_back(&a);
   }
   return out;
 }
 
-/// `c` refined by ICP from its pose; adds the steps taken to `steps`.
-void refine(Candidate& c, int region, const RefinementContext& context, long& steps) {
+/// `c` refined by ICP on to `steps` steps in all; adds the steps taken to `taken`.
+void refine(Candidate& c, int region, int steps, const RefinementContext& context, long& taken) {
   if (!context.icp) return;
-  IcpRun run(c.pose);
-  context.icp->iterate(context.model, run, context.icp->params().iterations, region,
-                       &context.scorer);
-  steps += run.iterations;
-  c.pose = run.pose;
+  if (!c.run) c.run.emplace(c.pose);
+  const int before = c.run->iterations;
+  context.icp->iterate(context.model, *c.run, steps, region, &context.scorer);
+  taken += c.run->iterations - before;
+  c.pose = c.run->pose;
 }
 
-/// The candidates' judgements: objective relative to the best's, less the shares in free space and
-/// left unexplained, plus the colour agreement where every candidate has colour evidence.
+/// Shape alternatives fit the segment's shape alike by construction, so their objectives differ by
+/// ICP's noise, which would drown the colour's evidence: the objective only rules out a candidate
+/// that fits clearly worse (below this share of the best's).
+constexpr float kFitFloor = 0.9f;
+
+/// The candidates' judgements: less the shares in free space and left unexplained, plus the colour
+/// agreement where every candidate has colour evidence; -1 for one below kFitFloor.
 void judge(std::vector<Candidate>& candidates) {
   float best = 0;
   for (const Candidate& c : candidates) best = std::max(best, c.lcp.score);
   const bool coloured = std::all_of(candidates.begin(), candidates.end(),
                                     [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
-    c.judgement = (best > 0 ? c.lcp.score / best : 0) - c.free - c.unexplained +
-                  (coloured ? c.colour.agreement : 0);
+    const bool fits = c.lcp.score >= kFitFloor * best;
+    c.judgement =
+        (fits ? 0.0f : -1.0f) - c.free - c.unexplained + (coloured ? c.colour.agreement : 0);
   }
 }
 
@@ -165,23 +177,32 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   for (const ShapeAlternative* a : alternatives) {
     candidates.emplace_back(instance.pose * a->motion, a->shift);
   }
+  // The alternatives take the screening steps of the instance's own candidates; the one kept, the
+  // rest of them.
+  const int screening = context.icp ? firstSteps(context.icp->params(), candidates.size()) : 0;
   long taken = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : taken)
   for (size_t k = 0; k < candidates.size(); ++k) {
-    if (k > 0) refine(candidates[k], instance.region, context, taken);  // k = 0 is refined
+    if (k > 0) refine(candidates[k], instance.region, screening, context, taken);  // 0 is refined
     measure(candidates[k], instance.region);
   }
-  steps += taken;
   judge(candidates);
-  const Candidate& best = chosen(candidates);
+  const Candidate& choice = chosen(candidates);
+  const bool turned = &choice != &candidates.front();  // an alternative, not the instance itself
+  Candidate best = choice;
   instance.ambiguous = equallyFitting(candidates, best, model);
-  if (&best != &candidates.front()) {
+  if (turned && context.icp) {
+    refine(best, instance.region, context.icp->params().iterations, context, taken);
+    measure(best, instance.region);
+  }
+  steps += taken;
+  if (turned) {
     instance.pose = best.pose;
     instance.lcp = best.lcp;
     instance.score = best.lcp.score;
     instance.refined = true;
   }
-  if (&best != &candidates.front() || !instance.ambiguous.empty()) {
+  if (turned || !instance.ambiguous.empty()) {
     std::vector<NearSymmetry> spread = context.near_symmetries;
     for (const ShapeAlternative& a : instance.ambiguous)
       spread.push_back({a.axis, a.angle, a.shift});

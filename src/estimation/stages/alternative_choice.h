@@ -17,10 +17,10 @@ namespace stocs {
 constexpr float kAlternativeTie = 0.03f;
 
 /// Each instance against its model's shape alternatives (less the declared symmetries): every
-/// alternative pose refined by ICP and judged by the segment's shape under it (objective relative
-/// to the best alternative's), less the share of its visible surface in free space and the share
-/// of the segment it leaves unexplained, plus its colour agreement (colour_agreement.h) where
-/// every candidate has colour evidence. An alternative
+/// alternative pose refined by ICP; those whose objective is within a tenth of the best candidate's
+/// (the shape fits them alike) judged by their colour agreement (colour_agreement.h, where every
+/// candidate has colour evidence) less the share of their visible surface in free space and the
+/// share of the segment they leave unexplained. An alternative
 /// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
 /// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
 /// and its covariance spans them. Adds the ICP steps taken to `steps`.
