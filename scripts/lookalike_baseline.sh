@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Issue 45's figures ("which object it is") on generated confusions that fit, seeds 201-210 (used
+# by no other figure, calibration or test): per simulator preset,
+#  - tabletop: `stocs synth --catalogue lookalike` scenes (each holds at most one object of each
+#    look-alike pair; its absent targets are drawn among the partners first, their maps mark the
+#    present look-alike), estimated at --min-confidence 0 and scored by `stocs eval --targets`
+#    (ROC AUC, calibration error, right poses rejected at 0.35) and lookalike_metrics.py tabletop
+#    (absent targets with a visible look-alike without a pose, and the other absent ones);
+#  - packed bin: `--packed-bin 1` (2 x 4 boxes, every one in scene_gt.json; absent targets the small
+#    box, whose map marks the bin's boxes, and one other), `--instances 8` at the default
+#    min_confidence, scored by lookalike_metrics.py bin; once more at --min-confidence 0 for the
+#    confidence's ROC AUC over every pose.
+#   scripts/lookalike_baseline.sh OUT [SEEDS...]      (STOCS: the `stocs` tool)
+set -euo pipefail
+source "$(dirname "$0")/common.sh"
+[ $# -ge 1 ] || { echo "usage: $0 OUT [SEEDS...]" >&2; exit 2; }
+out=$1
+shift
+seeds=${*:-$(seq 201 210)}
+tool=${STOCS:-$WS/devel/lib/stocs_ros/stocs}
+metrics="$(dirname "$0")/lookalike_metrics.py"
+mkdir -p "$out"
+cache="$out/cache"
+
+for preset in clean mild noisy very-noisy; do
+  pairs=()
+  targets=()
+  bin_logs=()
+  bin_all_logs=()
+  for seed in $seeds; do
+    d="$out/table-$preset-$seed"
+    rm -rf "$d"
+    "$tool" synth --out "$d" --catalogue lookalike --objects 4 --distractors 2 --images 3 \
+      --segmentation "$preset" --seed "$seed" --quiet 2> /dev/null
+    "$tool" estimate --dataset "$d" --targets "$d/test_targets_bop19.json" --out "$d.csv" \
+      --min-confidence 0 --seed "$seed" --cache-dir "$cache" 2> "$d.log"
+    "$tool" eval --dataset "$d" --results "$d.csv" --targets "$d/test_targets_bop19.json" \
+      --targets-csv "$d.targets.csv" > /dev/null
+    pairs+=(--dataset "$d" --results "$d.csv" --targets "$d/test_targets_bop19.json")
+    targets+=("$d.targets.csv")
+    b="$out/bin-$preset-$seed"
+    rm -rf "$b"
+    "$tool" synth --out "$b" --catalogue lookalike --packed-bin 1 --images 3 \
+      --segmentation "$preset" --seed "$seed" --quiet 2> /dev/null
+    "$tool" estimate --dataset "$b" --targets "$b/test_targets_bop19.json" --out "$b.csv" \
+      --instances 8 --seed "$seed" --cache-dir "$cache" 2> "$b.log"
+    bin_logs+=("$b.log")
+    ln -sfn "$(basename "$b")" "$b-all"
+    "$tool" estimate --dataset "$b" --targets "$b/test_targets_bop19.json" --out "$b-all.csv" \
+      --instances 8 --min-confidence 0 --seed "$seed" --cache-dir "$cache" 2> "$b-all.log"
+    bin_all_logs+=("$b-all.log")
+  done
+  {
+    echo "## $preset"
+    "$tool" eval "${pairs[@]}" --csv "$out/eval-$preset.csv" | grep -E '^\| (results|all)' || true
+    python3 "$metrics" tabletop "${targets[@]}"
+    python3 "$metrics" bin "${bin_logs[@]}"
+    STOCS_T=0.35 python3 "$metrics" bin "${bin_all_logs[@]}" | sed 's/^bin:/bin, every pose:/'
+  } | tee "$out/summary-$preset.txt"
+done
