@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Issue 45's figures ("which object it is") on generated confusions that fit, seeds 201-210 (used
 # by no other figure, calibration or test): per simulator preset,
-#  - tabletop: `stocs synth --catalogue lookalike` scenes (each holds at most one object of each
+#  - tabletop: `stocs synth --catalogue lookalike --objects 6` scenes (each holds one object of each
 #    look-alike pair; its absent targets are drawn among the partners first, their maps mark the
 #    present look-alike), estimated at --min-confidence 0 and scored by `stocs eval --targets`
 #    (ROC AUC, calibration error, right poses rejected at 0.35) and lookalike_metrics.py tabletop
@@ -30,7 +30,7 @@ for preset in clean mild noisy very-noisy; do
   for seed in $seeds; do
     d="$out/table-$preset-$seed"
     rm -rf "$d"
-    "$tool" synth --out "$d" --catalogue lookalike --objects 4 --distractors 2 --images 3 \
+    "$tool" synth --out "$d" --catalogue lookalike --objects 6 --distractors 2 --images 3 \
       --segmentation "$preset" --seed "$seed" --quiet 2> /dev/null
     "$tool" estimate --dataset "$d" --targets "$d/test_targets_bop19.json" --out "$d.csv" \
       --min-confidence 0 --seed "$seed" --cache-dir "$cache" 2> "$d.log"
@@ -52,7 +52,8 @@ for preset in clean mild noisy very-noisy; do
   done
   {
     echo "## $preset"
-    "$tool" eval "${pairs[@]}" --csv "$out/eval-$preset.csv" | grep -E '^\| (results|all)' || true
+    "$tool" eval "${pairs[@]}" --csv "$out/eval-$preset.csv" > "$out/eval-$preset.md"
+    python3 "$metrics" eval "$out/eval-$preset.csv"
     python3 "$metrics" tabletop "${targets[@]}"
     python3 "$metrics" bin "${bin_logs[@]}"
     STOCS_T=0.35 python3 "$metrics" bin "${bin_all_logs[@]}" | sed 's/^bin:/bin, every pose:/'

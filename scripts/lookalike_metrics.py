@@ -4,13 +4,14 @@
   lookalike_metrics.py tabletop T.targets.csv... : absent targets whose look-alike is visible
       (models/lookalikes.json, scene_gt_info.json px_count_visib > 0) and the other absent ones,
       the share of each with no pose at t (score below t or none)
+  lookalike_metrics.py eval EVAL.csv : the overall row of `stocs eval --csv` (the last "all" row)
   lookalike_metrics.py bin LOG... : from `stocs estimate --instances N` logs of packed bins, the
       published poses (confidence >= t) of the bin's object: the share that are distinct right
       instances (ADD-S below 10% of the diameter of an instance no higher pose took), the share of
       the ground-truth instances found, and the ROC AUC of the confidence of every pose written
       (distinct right against the rest); absent targets' poses are counted apart.
 t is 0.35 (min_confidence) unless STOCS_T is set. Each targets CSV is `stocs eval --targets-csv`
-of one dataset; its dataset folder is read from the CSV's dataset column.
+of one dataset, beside its dataset folder (named in the CSV's dataset column).
 """
 import csv
 import json
@@ -42,7 +43,7 @@ def tabletop(files):
     counts = {"fitting": [0, 0], "other": [0, 0]}  # [absent targets, without a pose at t]
     for name in files:
         for row in csv.DictReader(open(name)):
-            dataset = row["dataset"]
+            dataset = os.path.join(os.path.dirname(name), row["dataset"])
             targets = json.load(open(os.path.join(dataset, "test_targets_bop19.json")))
             key = (int(row["scene_id"]), int(row["im_id"]), int(row["obj_id"]))
             inst = {(t["scene_id"], t["im_id"], t["obj_id"]): t["inst_count"] for t in targets}
@@ -124,7 +125,17 @@ def bins(logs):
           "(distinct right against the rest): %.3f" % (absent_posed, absent, roc_auc(positive, negative)))
 
 
+def overall(files):
+    rows = [r for r in csv.DictReader(open(files[0])) if r["object"] == "all"]
+    r = rows[-1]
+    print("eval: %s present targets, %s absent; ROC AUC %.3f, calibration error %.3f, absent posed "
+          "at t %.1f%%, right poses rejected at t %.1f%%" % (
+              r["targets"], r["absent_targets"], float(r["score_roc_auc"]), float(r["ece"]),
+              100 * float(r["absent_posed_at_t"]), 100 * float(r["correct_rejected_at_t"])))
+
+
 if __name__ == "__main__":
-    if len(sys.argv) < 3 or sys.argv[1] not in ("tabletop", "bin"):
+    modes = {"tabletop": tabletop, "bin": bins, "eval": overall}
+    if len(sys.argv) < 3 or sys.argv[1] not in modes:
         sys.exit(__doc__)
-    (tabletop if sys.argv[1] == "tabletop" else bins)(sys.argv[2:])
+    modes[sys.argv[1]](sys.argv[2:])
