@@ -275,6 +275,7 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
   const std::vector<CatalogueObject> catalogue =
       models_dir.empty() ? catalogueSelection(params.catalogue) : std::vector<CatalogueObject>{};
   checkBinObject(params.bin.object, catalogue, model_files);
+  if (!models_dir.empty()) readLookalikes(models_dir / "lookalikes.json");  // malformed: say so now
   createDatasetRoot(root);
   writeModelsFolder(root / "models", model_files, catalogue);
   const BopDataset dataset(root);

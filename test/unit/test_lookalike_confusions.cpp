@@ -9,6 +9,7 @@
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
+#include "stocs/sim/bop_writer.h"
 #include "stocs/sim/lookalikes.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/probability_source.h"
@@ -66,6 +67,12 @@ TEST(Lookalikes, FileRoundTripsAndMalformedFilesAreRefused) {
   std::ofstream(dir / "same.json") << R"({"pairs": [[3, 3]]})";
   test::expectInputError([&] { readLookalikes(dir / "same.json"); },
                          "pair [3,3] is not two different positive object ids");
+  // A models folder's malformed file ends `stocs synth --models` before anything is written.
+  writeModels(dir, {objectCatalogue()[0]});
+  fs::copy_file(dir / "same.json", dir / "lookalikes.json");
+  test::expectInputError([&] { writeSyntheticDataset(dir / "out", SyntheticDatasetParams(), dir); },
+                         "lookalikes.json: pair [3,3]");
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 /// A 120 x 100 scene: object 1 in the left square, object 3 in the right one.
