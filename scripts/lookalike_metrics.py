@@ -62,6 +62,8 @@ def tabletop(files):
             counts[kind][0] += 1
             counts[kind][1] += not posed
     for kind, (n, none) in counts.items():
+        if n == 0:
+            continue
         share = 100.0 * none / n if n else float("nan")
         print("absent %s: %d targets, %d without a pose at t=%.2f (%.1f%%)" % (kind, n, none, T, share))
 
