@@ -7,11 +7,13 @@
 #include "stocs/geometry/normals.h"
 #include "stocs/io/mesh_io.h"
 #include "stocs/sim/depth_renderer.h"
+#include "stocs/sim/lookalikes.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
 
-GroundTruthMasks::GroundTruthMasks(const BopDataset& dataset) : dataset_(dataset) {}
+GroundTruthMasks::GroundTruthMasks(const BopDataset& dataset)
+    : dataset_(dataset), lookalikes_(readLookalikes(lookalikesPath(dataset.root()))) {}
 
 const MeshData& GroundTruthMasks::model(int obj_id) const {
   auto it = models_.find(obj_id);
@@ -41,6 +43,7 @@ SegmentationScene GroundTruthMasks::frame(int scene_id, int im_id) const {
                                  (dataset_.sceneDir(scene_id) / "scene_gt.json").string(), im_id));
   }
   SegmentationScene scene;
+  scene.lookalikes = lookalikes_;
   for (const BopGtInstance& g : instances->second) scene.obj_ids.push_back(g.obj_id);
   const cv::Mat depth = dataset_.loadDepth(scene_id, im_id);
   std::error_code ec;

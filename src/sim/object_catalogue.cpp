@@ -35,6 +35,13 @@ BopObjectInfo continuousAboutZ() {
   return info;
 }
 
+/// A closed cylinder: any turn about its axis, and upside down the same cylinder.
+BopObjectInfo cylinderSymmetries() {
+  BopObjectInfo info = continuousAboutZ();
+  info.symmetries_discrete.push_back(halfTurn(0));
+  return info;
+}
+
 /// The centre of the mesh's bounding box.
 Eigen::Vector3f boxCentre(const MeshData& mesh) {
   Eigen::Vector3f lo = mesh.vertices.front(), hi = lo;
@@ -143,6 +150,18 @@ CatalogueObject printedMug() {
   return {9, "printed mug", shifted(mug, -centre), {}, shifted(mugHandle(), -centre)};
 }
 
+/// 80 x 50 x 40 mm: within 20% per side of the box (90 x 55 x 35 mm).
+CatalogueObject smallBox() {
+  return {10, "small box", boxMesh({0.08f, 0.05f, 0.04f}), boxSymmetries(), {}, {1}};
+}
+
+/// A can 84 mm across and 92 mm high, the size of the mug's body (80 mm across, 95 mm high) and
+/// not within 20% of the cylinder (66 x 120 mm).
+CatalogueObject can() {
+  return {11, "can", centred(cylinderMesh(0.042f, 0.092f, kLatheSegments)), cylinderSymmetries(),
+          {}, {4}};
+}
+
 }  // namespace
 
 MeshData asymmetricMesh() {
@@ -154,13 +173,10 @@ MeshData asymmetricMesh() {
 }
 
 std::vector<CatalogueObject> objectCatalogue() {
-  Eigen::Matrix4d flip = halfTurn(0);  // a cylinder upside down is the same cylinder
-  BopObjectInfo cylinder = continuousAboutZ();
-  cylinder.symmetries_discrete.push_back(flip);
   return {
       {1, "box", boxMesh({0.09f, 0.055f, 0.035f}), boxSymmetries()},
       {2, "long box", boxMesh({0.18f, 0.045f, 0.05f}), boxSymmetries()},
-      {3, "cylinder", centred(cylinderMesh(0.033f, 0.12f, kLatheSegments)), cylinder},
+      {3, "cylinder", centred(cylinderMesh(0.033f, 0.12f, kLatheSegments)), cylinderSymmetries()},
       {4, "mug", centred(mugMesh()), {}},
       {5, "bowl", centred(bowlMesh()), continuousAboutZ()},
       {6, "asymmetric block", centred(asymmetricMesh()), {}},
@@ -171,17 +187,23 @@ std::vector<CatalogueObject> texturedCatalogue() {
   return {labelledBox(), printedCan(), printedMug()};
 }
 
+std::vector<CatalogueObject> lookalikeCatalogue() {
+  return {smallBox(), can()};
+}
+
 const std::vector<std::string>& catalogueSelectionNames() {
-  static const std::vector<std::string> names = {"standard", "textured", "all"};
+  static const std::vector<std::string> names = {"standard", "textured", "all", "lookalike"};
   return names;
 }
 
 std::vector<CatalogueObject> catalogueSelection(const std::string& name) {
   if (name == "standard") return objectCatalogue();
   if (name == "textured") return texturedCatalogue();
-  if (name == "all") {
+  if (name == "all" || name == "lookalike") {
     std::vector<CatalogueObject> all = objectCatalogue();
-    for (CatalogueObject& o : texturedCatalogue()) all.push_back(std::move(o));
+    for (CatalogueObject& o : name == "all" ? texturedCatalogue() : lookalikeCatalogue()) {
+      all.push_back(std::move(o));
+    }
     return all;
   }
   throw InputError(fmt::format("catalogue '{}': unknown (use {})", name,

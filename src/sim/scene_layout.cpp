@@ -259,3 +259,104 @@ Eigen::Isometry3f cameraLookingAt(const Eigen::Vector3f& eye, const Eigen::Vecto
 }
 
 }  // namespace stocs
+
+namespace stocs {
+namespace {
+
+/// The stable resting orientation of `mesh` with the lowest height (its largest face down).
+Eigen::Matrix3f flattestRest(const MeshData& mesh) {
+  Eigen::Matrix3f flattest = Eigen::Matrix3f::Identity();
+  float least = std::numeric_limits<float>::infinity();
+  for (const Eigen::Matrix3f& r : restingOrientations(mesh)) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const Eigen::Vector3f& v : mesh.vertices) {
+      lo = std::min(lo, (r * v).z());
+      hi = std::max(hi, (r * v).z());
+    }
+    if (hi - lo < least) {
+      least = hi - lo;
+      flattest = r;
+    }
+  }
+  return flattest;
+}
+
+/// The axis-aligned bounds of `mesh` turned by `r`.
+Eigen::AlignedBox3f turnedBounds(const MeshData& mesh, const Eigen::Matrix3f& r) {
+  Eigen::AlignedBox3f box;
+  for (const Eigen::Vector3f& v : mesh.vertices) box.extend(r * v);
+  return box;
+}
+
+/// A wall of `size` standing on the table with its centre above (x, y).
+PlacedObject binWall(const Eigen::Vector3f& size, float x, float y) {
+  PlacedObject wall{0, boxMesh(size), Eigen::Isometry3f::Identity()};
+  wall.pose.translation() = Eigen::Vector3f(x, y, size.z() / 2);
+  return wall;
+}
+
+/// The four walls around an inside of `inner` (x, y) metres, `height` high.
+std::vector<PlacedObject> binWalls(const Eigen::Vector2f& inner, float height) {
+  constexpr float kThickness = 0.005f;
+  const float x = (inner.x() + kThickness) / 2, y = (inner.y() + kThickness) / 2;
+  const float outer_x = inner.x() + 2 * kThickness;
+  return {binWall({outer_x, kThickness, height}, 0, y),
+          binWall({outer_x, kThickness, height}, 0, -y),
+          binWall({kThickness, inner.y(), height}, x, 0),
+          binWall({kThickness, inner.y(), height}, -x, 0)};
+}
+
+}  // namespace
+
+const ParamSet<PackedBinParams>& PackedBinParams::schema() {
+  using P = PackedBinParams;
+  static const ParamSet<P> schema =
+      ParamSet<P>()
+          .add(&P::object, "object", "", ParamRange::closed(0, 1000000),
+               "object id of the boxes of a packed bin, every one a ground-truth instance; 0: "
+               "tabletop scenes")
+          .flag("--packed-bin")
+          .add(&P::rows, "rows", "", ParamRange::closed(1, 20), "boxes across the packed bin")
+          .flag("--bin-rows")
+          .add(&P::columns, "columns", "", ParamRange::closed(1, 20), "boxes along the packed bin")
+          .flag("--bin-columns")
+          .add(&P::gap, "gap", "m", ParamRange::closed(0, 0.05),
+               "gap between neighbouring boxes of the packed bin")
+          .flag("--bin-gap");
+  return schema;
+}
+
+std::vector<PlacedObject> arrangePackedBin(int obj_id, const MeshData& mesh,
+                                           const PackedBinParams& params, Rng& rng) {
+  const Eigen::Matrix3f rest = flattestRest(mesh);
+  const Eigen::AlignedBox3f bounds = turnedBounds(mesh, rest);
+  const Eigen::Vector3f size = bounds.sizes();
+  const Eigen::Vector2f pitch(size.x() + params.gap, size.y() + params.gap);
+  // Each box moves by at most 0.43 gap (yaw at its corners, shift), so two stay apart.
+  const float max_yaw = params.gap / (2 * size.head<2>().norm());
+  const float max_shift = params.gap / 8;
+  std::vector<PlacedObject> placed;
+  for (int row = 0; row < params.rows; ++row) {
+    for (int column = 0; column < params.columns; ++column) {
+      const float half_turn = uniform01(rng) < 0.5f ? kPi : 0.0f;
+      const float yaw = half_turn + uniformIn(rng, -max_yaw, max_yaw);
+      const Eigen::Vector3f cell((column - (params.columns - 1) / 2.0f) * pitch.x(),
+                                 (row - (params.rows - 1) / 2.0f) * pitch.y(), 0);
+      const Eigen::Vector3f shift(uniformIn(rng, -max_shift, max_shift),
+                                  uniformIn(rng, -max_shift, max_shift), 0);
+      PlacedObject box{obj_id, mesh, Eigen::Isometry3f::Identity()};
+      box.pose.linear() = Eigen::AngleAxisf(yaw, Eigen::Vector3f::UnitZ()) * rest;
+      // The box's centre at the cell's, its bottom on the table.
+      box.pose.translation() = cell + shift -
+                               Eigen::AngleAxisf(yaw, Eigen::Vector3f::UnitZ()) * bounds.center() +
+                               Eigen::Vector3f(0, 0, size.z() / 2);
+      placed.push_back(std::move(box));
+    }
+  }
+  const Eigen::Vector2f inner(params.columns * pitch.x() + params.gap,
+                              params.rows * pitch.y() + params.gap);
+  for (PlacedObject& wall : binWalls(inner, size.z() + 0.005f)) placed.push_back(std::move(wall));
+  return placed;
+}
+
+}  // namespace stocs

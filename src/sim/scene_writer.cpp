@@ -162,12 +162,13 @@ std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects,
 
 SceneWriter::SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
                          std::vector<std::pair<int, MeshData>> models,
-                         std::map<int, MeshData> handles,
+                         std::map<int, MeshData> handles, Lookalikes lookalikes,
                          const std::function<void(const SyntheticImageReport&)>& progress)
     : dataset_(dataset),
       params_(params),
       models_(std::move(models)),
       handles_(std::move(handles)),
+      lookalikes_(std::move(lookalikes)),
       segmentation_(segmentationPreset(params.segmentation_preset)),
       noise_(params.depth_noise.atLevel(params.depth_noise_level)),
       camera_(bopCamera(params)),
@@ -184,7 +185,7 @@ void SceneWriter::writeView(const SceneView& view, SceneRecords& records,
   std::vector<HandleVisibility> handles =
       handleVisibility(frame, objects, view.camera_pose, handles_, params_.camera);
   if (!handles.empty()) records.handles[view.im] = std::move(handles);
-  const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb};
+  const SegmentationScene seen{frame.labels, objectIds(objects), frame.rgb, lookalikes_};
   const std::vector<BopTarget> targets = imageTargets(view, present, records.gt[view.im]);
   for (const BopTarget& t : targets) {
     const cv::Mat probability =
@@ -234,22 +235,41 @@ std::vector<BopTarget> SceneWriter::imageTargets(const SceneView& view,
 std::set<int> SceneWriter::absentObjects(const std::set<int>& present, uint64_t seed) const {
   std::vector<int> ids;
   for (const auto& [id, mesh] : models_) ids.push_back(id);
-  return drawAbsentObjects(ids, present, params_.absent_per_image, seed);
+  return drawAbsentObjects(ids, present, params_.absent_per_image, seed, lookalikes_);
 }
 
+namespace {
+
+/// Whether `id` has a look-alike among `present`.
+bool looksLikeOneOf(int id, const std::set<int>& present, const Lookalikes& lookalikes) {
+  const auto it = lookalikes.find(id);
+  if (it == lookalikes.end()) return false;
+  return std::any_of(it->second.begin(), it->second.end(),
+                     [&](int other) { return present.count(other) > 0; });
+}
+
+/// Moves random members of `pool` into `absent` until it holds `count` or `pool` is empty.
+void drawInto(std::vector<int>& pool, std::set<int>& absent, int count, Rng& rng) {
+  while (static_cast<int>(absent.size()) < count && !pool.empty()) {
+    const size_t k = uniformIndex(rng, static_cast<uint32_t>(pool.size()));
+    absent.insert(pool[k]);
+    pool.erase(pool.begin() + static_cast<long>(k));
+  }
+}
+
+}  // namespace
+
 std::set<int> drawAbsentObjects(const std::vector<int>& ids, const std::set<int>& present,
-                                int count, uint64_t seed) {
-  std::vector<int> spare;
+                                int count, uint64_t seed, const Lookalikes& lookalikes) {
+  std::vector<int> fitting, spare;
   for (int id : ids) {
-    if (!present.count(id)) spare.push_back(id);
+    if (present.count(id)) continue;
+    (looksLikeOneOf(id, present, lookalikes) ? fitting : spare).push_back(id);
   }
   Rng rng(streamSeed(seed, 0xab5e47));
   std::set<int> absent;
-  while (static_cast<int>(absent.size()) < count && !spare.empty()) {
-    const size_t k = uniformIndex(rng, static_cast<uint32_t>(spare.size()));
-    absent.insert(spare[k]);
-    spare.erase(spare.begin() + static_cast<long>(k));
-  }
+  drawInto(fitting, absent, count, rng);
+  drawInto(spare, absent, count, rng);
   return absent;
 }
 

@@ -14,6 +14,7 @@
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
 #include "stocs/sim/bop_writer.h"
+#include "stocs/sim/lookalikes.h"
 #include "stocs/sim/segmentation_simulator.h"
 #include "stocs/sim/synthetic_dataset.h"
 
@@ -47,14 +48,17 @@ struct SceneView {
 class SceneWriter {
  public:
   /// `handles`: the handle of each object id that has one (model frame), whose visibility the
-  /// scene's scene_handles.json records.
+  /// scene's scene_handles.json records; `lookalikes`: the models' look-alike pairs, whose absent
+  /// member's map marks the present one.
   SceneWriter(const BopDataset& dataset, const SyntheticDatasetParams& params,
               std::vector<std::pair<int, MeshData>> models, std::map<int, MeshData> handles,
+              Lookalikes lookalikes,
               const std::function<void(const SyntheticImageReport&)>& progress);
 
   const std::vector<std::pair<int, MeshData>>& models() const { return models_; }
   const SyntheticDatasetParams& params() const { return params_; }
   const BopDataset& dataset() const { return dataset_; }
+  const Lookalikes& lookalikes() const { return lookalikes_; }
 
   /// Renders the view, writes its images and records its camera, ground truth and targets; then
   /// reports it with the time since `start`.
@@ -65,7 +69,8 @@ class SceneWriter {
   void writeSceneFiles(int scene, const SceneRecords& records) const;
 
   /// Up to `absent_per_image` of the dataset's objects that are not in `present`, drawn from a
-  /// stream of their own of `seed`, in increasing id order.
+  /// stream of their own of `seed`, in increasing id order; those with a look-alike in `present`
+  /// first.
   std::set<int> absentObjects(const std::set<int>& present, uint64_t seed) const;
 
  private:
@@ -76,6 +81,7 @@ class SceneWriter {
   const SyntheticDatasetParams& params_;
   const std::vector<std::pair<int, MeshData>> models_;
   const std::map<int, MeshData> handles_;
+  const Lookalikes lookalikes_;
   const SegmentationNoiseParams segmentation_;
   const DepthNoiseParams noise_;
   const BopFrameCamera camera_;
@@ -89,9 +95,10 @@ std::vector<cv::Vec3b> sceneColours(const std::vector<PlacedObject>& objects,
                                     const SceneLookParams& look, Rng& rng);
 
 /// Up to `count` of `ids` that are not in `present`, drawn from a stream of their own of `seed`, in
-/// increasing id order: the absent objects of an image's targets.
+/// increasing id order: the absent objects of an image's targets. Those with a look-alike in
+/// `present` are drawn first (without look-alikes the draws are as they always were).
 std::set<int> drawAbsentObjects(const std::vector<int>& ids, const std::set<int>& present,
-                                int count, uint64_t seed);
+                                int count, uint64_t seed, const Lookalikes& lookalikes = {});
 
 /// Creates the folder of `file` and writes `image`; throws InputError when it cannot.
 void writeImage(const std::filesystem::path& file, const cv::Mat& image);

@@ -340,11 +340,29 @@ cv::Mat noiseBlobs(cv::Size size, const SegmentationNoiseParams& params, Rng& rn
   return blobs;
 }
 
-/// The map of an object that is not in the scene: a confusion or noise blobs (drawn from its own
-/// stream of `seed`, so present objects' maps stay as they were), plus the preset's noise.
-cv::Mat absentObject(const SegmentationScene& scene, const RandomLayout& layout,
+/// The pixels of the visible instances of the target's look-alikes (255, else 0).
+cv::Mat lookalikePixels(const SegmentationScene& scene, int target_obj_id) {
+  cv::Mat pixels(scene.labels.size(), CV_8UC1, cv::Scalar(0));
+  const auto lookalikes = scene.lookalikes.find(target_obj_id);
+  if (lookalikes == scene.lookalikes.end()) return pixels;
+  for (size_t i = 0; i < scene.obj_ids.size(); ++i) {
+    if (lookalikes->second.count(scene.obj_ids[i]))
+      pixels.setTo(255, scene.labels == static_cast<int>(i) + 1);
+  }
+  return pixels;
+}
+
+/// The map of an object that is not in the scene: its visible look-alikes found as the right class
+/// would be, else a confusion or noise blobs (drawn from its own stream of `seed`, so present
+/// objects' maps stay as they were), plus the preset's noise.
+cv::Mat absentObject(const SegmentationScene& scene, int target_obj_id, const RandomLayout& layout,
                      const SegmentationNoiseParams& params, uint64_t seed) {
   Rng rng(streamSeed(seed, 0xab5e47));
+  const cv::Mat lookalikes = lookalikePixels(scene, target_obj_id);
+  if (cv::countNonZero(lookalikes) > 0) {
+    const float level = params.lookalike_confusion_level * (0.75f + 0.5f * uniform01(rng));
+    return foundObject(lookalikes, layout, params) * std::min(1.0f, level);
+  }
   const bool confusion = uniform01(rng) < params.absent_confusion_share;
   return confusion ? confusedObject(scene.labels, layout, params, rng)
                    : noiseBlobs(scene.labels.size(), params, rng);
@@ -379,6 +397,9 @@ const ParamSet<SegmentationNoiseParams>& SegmentationNoiseParams::schema() {
                "share of absent targets whose map is a confusion with a visible object")
           .add(&P::confusion_level, "confusion_level", "", share,
                "mean probability on a confused object's region, relative to confidence")
+          .add(&P::lookalike_confusion_level, "lookalike_confusion_level", "", share,
+               "mean probability of an absent object's map on its visible look-alikes, relative "
+               "to confidence")
           .add(&P::absent_blobs, "absent_blobs", "", ParamRange::closed(0, 100),
                "most blobs of an absent object's noise map")
           .add(&P::absent_blob_level, "absent_blob_level", "", share,
@@ -426,7 +447,7 @@ cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
   const bool absent =
       std::find(scene.obj_ids.begin(), scene.obj_ids.end(), target_obj_id) == scene.obj_ids.end();
   const uint64_t nearer = seeds.weight < 0.5f ? seeds.from : seeds.to;
-  cv::Mat probability = absent ? absentObject(scene, layout, params, nearer)
+  cv::Mat probability = absent ? absentObject(scene, target_obj_id, layout, params, nearer)
                                : presentObject(scene, masks, layout, params);
   probability += params.noise * layout.noise_field;
   return cv::min(cv::max(probability, 0.0f), 1.0f);

@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "scene_writer.h"
 #include "stocs/io/mesh_io.h"
+#include "stocs/sim/lookalikes.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
@@ -31,7 +35,9 @@ std::vector<fs::path> modelFiles(const fs::path& source) {
   for (const fs::directory_entry& e : fs::directory_iterator(source)) {
     const std::string name = e.path().filename().string();
     const bool model = name.rfind("obj_", 0) == 0 && e.path().extension() == ".ply";
-    if (model || name == "models_info.json") files.push_back(e.path());
+    if (model || name == "models_info.json" || name == "lookalikes.json") {
+      files.push_back(e.path());
+    }
     any_model |= model;
   }
   if (!any_model) {
@@ -47,6 +53,8 @@ void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& file
   fs::create_directories(models);
   if (files.empty()) {
     writeModels(models, catalogue);
+    const Lookalikes pairs = catalogueLookalikes(catalogue);
+    if (!pairs.empty()) writeLookalikes(models / "lookalikes.json", pairs);
     return;
   }
   for (const fs::path& file : files) {
@@ -97,12 +105,68 @@ std::map<int, MeshData> handlesOf(const std::vector<CatalogueObject>& catalogue)
   return handles;
 }
 
+/// `models` without one member, drawn from `seed`, of each look-alike pair, so that a scene holds
+/// at most one of the pair and the other is left to be an absent target that fits; `models` as
+/// they are when there are no pairs.
+std::vector<std::pair<int, MeshData>> oneOfEachPair(
+    const std::vector<std::pair<int, MeshData>>& models, const Lookalikes& lookalikes,
+    uint64_t seed) {
+  if (lookalikes.empty()) return models;
+  Rng rng(seed);
+  std::set<int> left_out;
+  for (const auto& [id, others] : lookalikes) {
+    for (int other : others) {
+      if (id > other || left_out.count(id) || left_out.count(other)) continue;
+      left_out.insert(uniform01(rng) < 0.5f ? id : other);
+    }
+  }
+  std::vector<std::pair<int, MeshData>> kept;
+  for (const auto& model : models) {
+    if (!left_out.count(model.first)) kept.push_back(model);
+  }
+  return kept;
+}
+
+/// The objects of a scene: a packed bin with `params.bin.object`, else a tabletop arrangement of
+/// at most one object of each look-alike pair.
+std::vector<PlacedObject> arrangeScene(const SceneWriter& writer, int scene, Rng& rng) {
+  const SyntheticDatasetParams& params = writer.params();
+  const std::vector<std::pair<int, MeshData>>& models = writer.models();
+  if (params.bin.object == 0) {
+    constexpr uint64_t kPairs = 0x9a125;  // the stream that leaves out look-alike partners
+    const uint64_t seed = streamSeed(streamSeed(params.seed, static_cast<uint64_t>(scene)), kPairs);
+    return arrangeObjects(oneOfEachPair(models, writer.lookalikes(), seed), params.layout, rng);
+  }
+  for (const auto& [id, mesh] : models) {
+    if (id == params.bin.object) return arrangePackedBin(id, mesh, params.bin, rng);
+  }
+  throw InputError(
+      fmt::format("synth: --packed-bin {}: the dataset has no such object", params.bin.object));
+}
+
+/// Throws InputError, before anything is written, when `--packed-bin` names an object that neither
+/// the catalogue nor the models folder holds.
+void checkBinObject(int object, const std::vector<CatalogueObject>& catalogue,
+                    const std::vector<fs::path>& model_files) {
+  if (object == 0) return;
+  std::vector<int> ids;
+  for (const CatalogueObject& o : catalogue) ids.push_back(o.id);
+  for (const fs::path& file : model_files) {
+    int id = 0;
+    if (std::sscanf(file.filename().string().c_str(), "obj_%d.ply", &id) == 1) ids.push_back(id);
+  }
+  if (std::find(ids.begin(), ids.end(), object) == ids.end()) {
+    throw InputError(fmt::format("synth: --packed-bin {}: no such object among the models ({})",
+                                 object, fmt::join(ids, ", ")));
+  }
+}
+
 /// Scene `scene`: an arrangement from its own random stream viewed from `images_per_scene` random
 /// cameras; returns its targets.
 std::vector<BopTarget> writeRandomViews(const SceneWriter& writer, int scene) {
   const SyntheticDatasetParams& params = writer.params();
   Rng rng(streamSeed(params.seed, static_cast<uint64_t>(scene)));
-  const std::vector<PlacedObject> objects = arrangeObjects(writer.models(), params.layout, rng);
+  const std::vector<PlacedObject> objects = arrangeScene(writer, scene, rng);
   const std::vector<cv::Vec3b> colours = sceneColours(objects, params.look, rng);
   SceneRecords records;
   for (int im = 0; im < params.images_per_scene; ++im) {
@@ -162,9 +226,12 @@ const ParamSet<SyntheticDatasetParams>& SyntheticDatasetParams::schema() {
           .add(&P::catalogue, "catalogue", "", std::nullopt,
                fmt::format("generated objects when no --models folder is given: {} (standard: "
                            "ids 1-6; textured: the vertex-coloured ids 7-9, a labelled box, a "
-                           "printed can and a printed mug; all: both)",
+                           "printed can and a printed mug; all: both; lookalike: ids 1-6 and "
+                           "their look-alikes, 10 a small box like box 1 and 11 a can like the "
+                           "mug's body, pairs in models/lookalikes.json)",
                            fmt::join(catalogueSelectionNames(), ", ")))
-          .flag("--catalogue");
+          .flag("--catalogue")
+          .nest(&P::bin, "bin", PackedBinParams::schema(), "Packed bin");
   return schema;
 }
 
@@ -184,6 +251,11 @@ void SyntheticDatasetParams::validate() const {
         "number with --frames",
         images_per_scene));
   }
+  if (sequence.enabled && bin.object != 0) {
+    throw InputError(fmt::format(
+        "synth: --packed-bin {} makes random views of a bin; it does not apply to a sequence",
+        bin.object));
+  }
   depth_noise.validate();
   segmentationPreset(segmentation_preset);
   catalogueSelection(catalogue);
@@ -202,11 +274,13 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
       models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
   const std::vector<CatalogueObject> catalogue =
       models_dir.empty() ? catalogueSelection(params.catalogue) : std::vector<CatalogueObject>{};
+  checkBinObject(params.bin.object, catalogue, model_files);
+  if (!models_dir.empty()) readLookalikes(models_dir / "lookalikes.json");  // malformed: say so now
   createDatasetRoot(root);
   writeModelsFolder(root / "models", model_files, catalogue);
   const BopDataset dataset(root);
   const SceneWriter writer(dataset, params, loadModels(dataset, root, catalogue),
-                           handlesOf(catalogue), progress);
+                           handlesOf(catalogue), readLookalikes(lookalikesPath(root)), progress);
   std::vector<BopTarget> targets;
   for (int scene = 0; scene < params.scenes; ++scene) {
     const std::vector<BopTarget> scene_targets = params.sequence.enabled

@@ -13,11 +13,13 @@ namespace stocs {
 
 class GroundTruthMasks {
  public:
-  /// Keeps a reference: `dataset` must outlive this object.
+  /// Keeps a reference: `dataset` must outlive this object. Throws InputError for a malformed
+  /// models/lookalikes.json.
   explicit GroundTruthMasks(const BopDataset& dataset);
 
   /// Labels (1 + index of the instance in scene_gt.json, 0 for none), the object id of each
-  /// instance, and the RGB image when the frame has one. Throws InputError naming the file of a
+  /// instance, the RGB image when the frame has one, and the dataset's look-alike pairs
+  /// (models/lookalikes.json, lookalikes.h). Throws InputError naming the file of a
   /// missing or malformed input.
   SegmentationScene frame(int scene_id, int im_id) const;
 
@@ -29,6 +31,7 @@ class GroundTruthMasks {
   const MeshData& model(int obj_id) const;
 
   const BopDataset& dataset_;
+  const std::map<int, std::set<int>> lookalikes_;
   mutable std::map<int, MeshData> models_;
   mutable std::map<int, float> splat_radius_;  ///< for point models, metres
 };

@@ -3,7 +3,8 @@
 // mug, a bowl and an asymmetric block. `stocs meshes` writes them to meshes/ (PLY in mm with a BOP
 // models_info.json); `stocs synth` puts them in generated scenes; tests use them directly.
 // Apart from them, textured objects whose shape is (nearly) symmetric and whose print is not, for
-// scenes where colour or a mug's handle alone tells the poses apart (`stocs synth --catalogue`).
+// scenes where colour or a mug's handle alone tells the poses apart (`stocs synth --catalogue`),
+// and look-alikes of standard objects, for scenes where a network confuses them.
 
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ struct CatalogueObject {
   /// The part of the mesh that alone breaks the symmetry of the rest (a mug's handle), in the
   /// mesh's frame; empty when there is none.
   MeshData handle = {};
+  /// Objects of similar shape and size that a network confuses with this one (lookalikes.h).
+  std::vector<int> lookalikes = {};
 };
 
 /// Every catalogue object, ids 1..N. Deterministic: the same meshes on every call.
@@ -33,8 +36,13 @@ std::vector<CatalogueObject> objectCatalogue();
 /// None has a symmetry that keeps its print; the mug's `handle` is set.
 std::vector<CatalogueObject> texturedCatalogue();
 
+/// Look-alikes of two standard objects, ids 10..11: a box within 20% per side of the box (id 1)
+/// and a can the size of the mug's body (id 4), each declaring that object as its look-alike.
+std::vector<CatalogueObject> lookalikeCatalogue();
+
 /// The catalogue selections of `stocs synth --catalogue`: "standard" (objectCatalogue()),
-/// "textured" (texturedCatalogue()) and "all" (both).
+/// "textured" (texturedCatalogue()), "all" (both) and "lookalike" (objectCatalogue() and
+/// lookalikeCatalogue()).
 const std::vector<std::string>& catalogueSelectionNames();
 /// The objects of a selection; throws InputError naming the selections for an unknown name.
 std::vector<CatalogueObject> catalogueSelection(const std::string& name);

@@ -37,6 +37,18 @@ struct SceneLayoutParams {
   void checkOrder() const;
 };
 
+/// A packed bin (`stocs synth --packed-bin ID`): identical boxes of one object side by side in rows
+/// and columns, every one of them a ground-truth instance, inside four thin walls.
+struct PackedBinParams {
+  int object = 0;      ///< object id of the boxes; 0: no bin, tabletop scenes
+  int rows = 2;        ///< boxes across the bin
+  int columns = 4;     ///< boxes along the bin
+  float gap = 0.003f;  ///< between neighbouring boxes, metres
+
+  /// Key, range, unit and meaning of every field.
+  static const ParamSet<PackedBinParams>& schema();
+};
+
 struct PlacedObject {
   int obj_id = 0;  ///< dataset object id; 0 for a distractor
   MeshData mesh;   ///< metres
@@ -48,6 +60,14 @@ struct PlacedObject {
 /// place in 200 tries is left out.
 std::vector<PlacedObject> arrangeObjects(const std::vector<std::pair<int, MeshData>>& models,
                                          const SceneLayoutParams& params, Rng& rng);
+
+/// The packed bin of `params`: `rows` x `columns` instances of `mesh` (object `obj_id`), each
+/// resting on its largest stable face, all the same way up, in a grid `gap` apart; each turned by a
+/// random half turn about the vertical, and by a small yaw and shift that keep every pair of boxes
+/// apart. Four walls 5 mm thick, 5 mm higher than the boxes and `gap` away from them, are
+/// distractors (id 0). Centred on the table origin.
+std::vector<PlacedObject> arrangePackedBin(int obj_id, const MeshData& mesh,
+                                           const PackedBinParams& params, Rng& rng);
 
 /// Whether object `moving` of `objects`, put at `pose` (model to table), keeps its footprint at
 /// least `gap` metres from every other object's at its own pose.

@@ -6,6 +6,8 @@
 // named presets span that range (their measured precision and recall are in docs/simulator.md).
 
 #include <cstdint>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,10 @@ struct SegmentationNoiseParams {
   /// Mean probability on the confused object's region relative to `confidence` (drawn per target
   /// in 0.75..1.25 times this): a similar class fires there, below what the right class gets.
   float confusion_level = 0.55f;
+  /// The same for the map of an absent object on its visible look-alikes (SegmentationScene::
+  /// lookalikes): a network that confuses two objects of one shape marks the present one almost
+  /// as it marks it for its own class.
+  float lookalike_confusion_level = 0.8f;
   int absent_blobs = 3;            ///< most blobs of a noise map (1 to this many per target)
   float absent_blob_level = 0.4f;  ///< mean peak probability of a blob (0.6..1.4 times per blob)
 
@@ -57,15 +63,19 @@ struct SegmentationScene {
   cv::Mat labels;            ///< CV_32SC1: 1 + index of the instance visible at a pixel, 0 for none
   std::vector<int> obj_ids;  ///< object id of each instance
   cv::Mat rgb;               ///< optional CV_8UC3 colour image of the same size
+  /// Look-alikes of each object id (lookalikes.h): an absent target's map marks every visible
+  /// instance of its look-alikes.
+  std::map<int, std::set<int>> lookalikes = {};
 };
 
 /// The simulated probability (CV_32FC1 in [0, 1]) of object `target_obj_id` at every pixel: the
 /// same for the same seed. For an object that is not among the scene's instances (an absent
-/// target), the map a network could emit for it: with probability `absent_confusion_share` another
-/// visible instance's region at a confusion level (class confusion), else the low-level noise with
-/// a few blobs of moderate probability; kind and strength drawn from the seed. Throws InputError
-/// for a label image that is not CV_32SC1, labels without an object id, or an RGB image of another
-/// size or type.
+/// target), the map a network could emit for it: where instances of its look-alikes are visible,
+/// their regions at `lookalike_confusion_level`; else with probability `absent_confusion_share`
+/// another visible instance's region at a confusion level (class confusion), else the low-level
+/// noise with a few blobs of moderate probability; kind and strength drawn from the seed. Throws
+/// InputError for a label image that is not CV_32SC1, labels without an object id, or an RGB image
+/// of another size or type.
 cv::Mat simulateSegmentation(const SegmentationScene& scene, int target_obj_id,
                              const SegmentationNoiseParams& params, uint64_t seed);
 

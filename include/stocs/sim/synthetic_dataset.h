@@ -42,6 +42,8 @@ struct SyntheticDatasetParams {
   /// The generated objects without a models folder (catalogueSelectionNames()): "standard", or
   /// "textured" / "all" for the vertex-coloured objects of texturedCatalogue().
   std::string catalogue = "standard";
+  /// With `bin.object`, each scene is a packed bin of that object instead of a tabletop.
+  PackedBinParams bin;
 
   /// Key, range, unit and meaning of every field but the camera and the depth noise model (the
   /// options of `stocs synth`).
@@ -58,8 +60,9 @@ struct SyntheticImageReport {
 };
 
 /// Writes the dataset to `root`, which must not exist or be empty. Models come from `models_dir`
-/// (its obj_*.ply and models_info.json are copied) or, when it is empty, from the catalogue
-/// selection `params.catalogue`. A scene with a handled object (a mug) gets scene_handles.json:
+/// (its obj_*.ply, models_info.json and lookalikes.json are copied) or, when it is empty, from the
+/// catalogue selection `params.catalogue` (its look-alike pairs written to models/lookalikes.json
+/// when it declares any). A scene with a handled object (a mug) gets scene_handles.json:
 /// how much of each such instance's handle each image shows.
 /// `progress` is called after each image. Deterministic for a seed: the same files every time.
 /// Throws InputError naming the problem.
