@@ -83,6 +83,36 @@ TEST(CloudConversion, BadCloudsAreNamed) {
   EXPECT_NE(conversionError(truncated).find("data bytes"), std::string::npos);
 }
 
+TEST(CloudConversion, ColourComesFromThePackedRgbField) {
+  const stocs::OrganizedCloud cloud = smallCloud();
+  EXPECT_TRUE(colourFromCloudMsg(cloudToMsg(cloud, cv::Mat())).empty());
+  cv::Mat bgr(3, 4, CV_8UC3, cv::Scalar(10, 20, 30));
+  bgr.at<cv::Vec3b>(2, 1) = cv::Vec3b(200, 100, 50);
+  const cv::Mat colour = colourFromCloudMsg(cloudToMsg(cloud, bgr));
+  ASSERT_EQ(colour.type(), CV_8UC3);
+  EXPECT_EQ(colour.at<cv::Vec3b>(0, 0), cv::Vec3b(10, 20, 30));
+  EXPECT_EQ(colour.at<cv::Vec3b>(2, 1), cv::Vec3b(200, 100, 50));
+}
+
+TEST(CloudConversion, BadRgbFieldsAreNamed) {
+  const sensor_msgs::PointCloud2 good = cloudToMsg(smallCloud(), cv::Mat(3, 4, CV_8UC3));
+  const auto error = [](const sensor_msgs::PointCloud2& msg) {
+    try {
+      colourFromCloudMsg(msg);
+    } catch (const stocs::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  sensor_msgs::PointCloud2 bytes = good;
+  bytes.fields[3].datatype = sensor_msgs::PointField::UINT8;
+  EXPECT_EQ(error(bytes), "cloud field 'rgb' is not a packed 4-byte colour within its point step");
+  sensor_msgs::PointCloud2 outside = good;
+  outside.fields[3].offset = outside.point_step - 2;
+  EXPECT_EQ(error(outside),
+            "cloud field 'rgb' is not a packed 4-byte colour within its point step");
+}
+
 // Regression (fuzz_ros_cloud): offset + 4 wrapped in 32 bits, so an offset near 2^32 passed the
 // point-step check and the copy read far outside the data.
 TEST(CloudConversion, FieldOffsetNearTheTopOfUint32IsRejected) {

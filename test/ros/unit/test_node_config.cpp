@@ -178,6 +178,32 @@ TEST(NodeConfig, ClassIdsComeFromInputLabelsOrTheObjectIds) {
   EXPECT_EQ(by_list.input.segmentation.mask_border_px, 5.0f);
 }
 
+// A BOP model's symmetries come from the models_info.json beside it; a file that is not one names
+// itself and the object.
+TEST(NodeConfig, SymmetriesComeFromTheModelsInfoBesideABopModel) {
+  const std::filesystem::path dir = stocs::test::scratchDir("config_models_info");
+  const std::filesystem::path config = dir / "node.yaml";
+  std::ofstream(config) << "objects:\n  - {name: bowl, model: obj_000005.ply}\n";
+  std::ofstream(dir / "obj_000005.ply") << "ply\n";  // read when the node loads it, not here
+  std::ofstream(dir / "models_info.json")
+      << R"({"5": {"diameter": 150, "symmetries_continuous": [{"axis": [0, 0, 1], )"
+      << R"("offset": [0, 0, 0]}]}})";
+  const NodeConfig c = loadNodeConfig(config);
+  ASSERT_EQ(c.objects[0].symmetries.continuous.size(), 1u);
+  EXPECT_TRUE(c.objects[0].symmetries.continuous[0].axis.isApprox(Eigen::Vector3f::UnitZ()));
+
+  std::ofstream(dir / "models_info.json") << R"({"5": {"diameter": 150, "symmetries_continuous")";
+  try {
+    loadNodeConfig(config);
+    ADD_FAILURE() << "a malformed models_info.json was read";
+  } catch (const stocs::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("objects[0]"), std::string::npos) << message;
+    EXPECT_NE(message.find("symmetries from models_info.json"), std::string::npos) << message;
+    EXPECT_NE(message.find("models_info.json"), std::string::npos) << message;
+  }
+}
+
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   const std::string box = kBox;
   const std::vector<std::pair<std::string, std::string>> cases = {
