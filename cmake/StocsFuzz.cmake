@@ -68,6 +68,9 @@ foreach(src ${STOCS_FUZZ_SOURCES})
     endif()
     list(APPEND sources $<TARGET_OBJECTS:stocs_fuzz_ros_conversion>)
   endif()
+  if(name STREQUAL "fuzz_lookalikes")  # the one parser of the simulator, without the rest of it
+    list(APPEND sources ${PROJECT_SOURCE_DIR}/src/sim/lookalikes.cpp)
+  endif()
   add_executable(${name} ${sources})
   target_compile_options(${name} PRIVATE -fsanitize=fuzzer,${STOCS_FUZZ_SANITIZERS}
                          -fno-omit-frame-pointer -fno-sanitize-recover=undefined)

@@ -128,6 +128,7 @@ void bopSeeds(const fs::path& corpus) {
             R"([{"scene_id": 1, "im_id": 0, "obj_id": 2, "inst_count": 1},)"
             R"( {"scene_id": 1, "im_id": 0, "obj_id": 5, "inst_count": 0},)"
             R"( {"scene_id": 2, "im_id": 3, "obj_id": 1, "inst_count": 3}])");
+  writeSeed(corpus, "fuzz_lookalikes", "lookalikes.json", R"({"pairs": [[1, 10], [4, 11]]})");
   writeSeed(corpus, "fuzz_box_detections", "boxes.json",
             R"([{"scene_id": 1, "image_id": 0, "category_id": 2, "bbox": [10, 5, 20.5, 30],)"
             R"( "score": 0.9, "time": 0.1}, {"scene_id": 1, "image_id": 0, "category_id": 5,)"
