@@ -38,6 +38,9 @@ constexpr double kPlaneMaxCurvature = 0.005;
 /// differ by less grow one plane. Loose, as the offset moves by |p| times the normals' noise; the
 /// plane's points are then taken by distance (plane_distance).
 constexpr float kPlaneGrowDistance = 0.03f;
+/// An unoccluded object's visible surface spans about this share of its diameter (0.93-1.0 for the
+/// six objects of the generated development scenes, seeds 1-3).
+constexpr float kVisibleShare = 0.95f;
 /// Neighbours PCL's depth-edge detection searches for a valid depth across a gap.
 constexpr int kEdgeSearchNeighbours = 10;
 
@@ -226,13 +229,29 @@ cv::Mat fullSize(const cv::Mat& reduced, int stride, cv::Size size) {
   return grown(cv::Rect(0, 0, size.width, size.height)).clone();
 }
 
-/// A hard mask softened as segmentation_inputs.h softens one of score 1.
-cv::Mat softMask(const cv::Mat& mask, const GeometricSegmentationParams& params) {
+/// Adds a region to `map` (CV_32FC1), softened as segmentation_inputs.h softens a mask of
+/// `score`: within its box and the blur's reach only, which is all the blur changes.
+void addSoftRegion(const DepthRegion& region, float score,
+                   const GeometricSegmentationParams& params, cv::Mat& map) {
   SegmentationInputParams soft;
   soft.mask_border_px = params.border_px;
   soft.mask_inside_floor = params.inside_floor;
   soft.mask_outside_floor = params.outside_floor;
-  return maskProbability({InstanceMask{mask, 0, 1.0f}}, 0, mask.size(), soft);
+  const int reach = static_cast<int>(std::ceil(4 * params.border_px)) + 1;
+  const cv::Rect roi = (region.box + cv::Size(2 * reach, 2 * reach) - cv::Point(reach, reach)) &
+                       cv::Rect(cv::Point(), map.size());
+  const cv::Mat part =
+      maskProbability({InstanceMask{region.mask(roi), 0, score}}, 0, roi.size(), soft);
+  cv::Mat target = map(roi);
+  cv::max(target, part, target);
+}
+
+/// How well a region's extent matches an object's expected visible extent (kVisibleShare of its
+/// diameter), in (0, 1]: a log-normal bell of deviation size_sigma.
+float sizeScore(const DepthRegion& region, const ObjectSize& size,
+                const GeometricSegmentationParams& params) {
+  const float z = std::log(region.extent / (kVisibleShare * size.diameter)) / params.size_sigma;
+  return std::exp(-0.5f * z * z);
 }
 
 }  // namespace
@@ -439,7 +458,9 @@ cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t regi
     throw InputError(fmt::format("region {} does not exist; the segmentation has {}", region,
                                  segmentation.regions.size()));
   }
-  return softMask(segmentation.regions[region].mask, params);
+  cv::Mat map(segmentation.plane_mask.size(), CV_32FC1, cv::Scalar(params.outside_floor));
+  addSoftRegion(segmentation.regions[region], 1.0f, params, map);
+  return map;
 }
 
 cv::Mat objectProbability(const GeometricSegmentation& segmentation, const ObjectSize& size,
@@ -451,11 +472,13 @@ cv::Mat objectProbability(const GeometricSegmentation& segmentation, const Objec
     throw InputError(
         fmt::format("object width {} m is not finite and non-negative", size.min_width));
   }
-  cv::Mat fitting(segmentation.plane_mask.size(), CV_8UC1, cv::Scalar(0));
+  cv::Mat map(segmentation.plane_mask.size(), CV_32FC1, cv::Scalar(params.outside_floor));
   for (const DepthRegion& region : segmentation.regions) {
-    if (regionFits(region, size, params)) fitting.setTo(255, region.mask);
+    if (!regionFits(region, size, params)) continue;
+    addSoftRegion(region, std::max(params.min_region_score, sizeScore(region, size, params)),
+                  params, map);
   }
-  return softMask(fitting, params);
+  return map;
 }
 
 const ParamSet<GeometricSegmentationParams>& GeometricSegmentationParams::schema() {
@@ -489,6 +512,10 @@ const ParamSet<GeometricSegmentationParams>& GeometricSegmentationParams::schema
                "object's plus width_margin")
           .add(&P::width_margin, "width_margin", "m", ParamRange::closed(0, 1),
                "what a candidate may be thicker than the object for the sensor's noise")
+          .add(&P::size_sigma, "size_sigma", "", ParamRange::aboveUpTo(0, 10),
+               "deviation of ln(extent / visible extent) of a candidate's score")
+          .add(&P::min_region_score, "min_region_score", "", ParamRange::closed(0, 1),
+               "the least score of a candidate that can hold the object")
           .add(&P::border_px, "border_px", "px", ParamRange::closed(0, 100),
                "a candidate's border is blurred by a Gaussian of this deviation; 0: hard edges")
           .add(&P::inside_floor, "inside_floor", "", ParamRange::closed(0, 1),

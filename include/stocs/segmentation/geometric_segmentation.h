@@ -48,6 +48,12 @@ struct GeometricSegmentationParams {
   float max_extent_share = 1.3f;
   /// Metres: the sensor's noise added to what a region may be thicker than the object.
   float width_margin = 0.01f;
+  /// A candidate that can hold the object scores by how its extent matches the object's visible
+  /// extent (about 0.95 of its diameter): a bell of this deviation in ln(extent / visible extent).
+  /// Sampling and scoring weigh it by that, so a region of the object's size comes first.
+  float size_sigma = 0.15f;
+  /// ... and scores at least this (above estimation.segment.min_probability: it stays a candidate).
+  float min_region_score = 0.25f;
   /// Softening of each candidate as a hard mask (SegmentationInputParams): the border's blur ...
   float border_px = 3.0f;
   /// ... the least probability inside ...
@@ -126,8 +132,9 @@ bool regionFits(const DepthRegion& region, const ObjectSize& size,
 cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t region,
                           const GeometricSegmentationParams& params);
 
-/// The probability map of an object of `size`: the union of the regions that can hold it
-/// (regionFits), softened; the outside floor everywhere when none can. Throws InputError for a
+/// The probability map of an object of `size`: the regions that can hold it (regionFits), each
+/// softened with the score of its extent against the object's (size_sigma); the outside floor
+/// everywhere when none can. Throws InputError for a
 /// diameter that is not finite and positive, or a width that is not finite and non-negative.
 cv::Mat objectProbability(const GeometricSegmentation& segmentation, const ObjectSize& size,
                           const GeometricSegmentationParams& params);
