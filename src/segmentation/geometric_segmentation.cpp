@@ -35,9 +35,10 @@ constexpr float kPlaneFacingDeg = 30.0f;
 /// sum); sensor noise on a table stays far below it.
 constexpr double kPlaneMaxCurvature = 0.005;
 /// Metres at 1 m (PCL scales it by the depth squared): neighbours whose plane offsets (n . p)
-/// differ by less grow one plane. Loose, as the offset moves by |p| times the normals' noise; the
-/// plane's points are then taken by distance (plane_distance).
-constexpr float kPlaneGrowDistance = 0.03f;
+/// differ by less grow one plane. Loose, as the offset moves by |p| times the normals' noise (a
+/// table seen through 2.5 times a Kinect's noise broke into small pieces at 0.03); the plane's
+/// points are then taken by distance (plane_distance).
+constexpr float kPlaneGrowDistance = 0.1f;
 /// An unoccluded object's visible surface spans about this share of its diameter (0.93-1.0 for the
 /// six objects of the generated development scenes, seeds 1-3).
 constexpr float kVisibleShare = 0.95f;

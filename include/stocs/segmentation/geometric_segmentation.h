@@ -28,8 +28,9 @@ struct GeometricSegmentationParams {
   /// A plane of at least this area (m^2) is a supporting surface (table, bin floor, wall) and is
   /// removed; smaller planes are object faces.
   float plane_min_area = 0.05f;
-  /// Degrees: neighbouring normals within this angle grow one plane.
-  float plane_angle_deg = 3.0f;
+  /// Degrees: neighbouring normals within this angle grow one plane (loose: a noisier sensor's
+  /// normals part by several degrees on a table, while a crease between faces turns faster).
+  float plane_angle_deg = 10.0f;
   /// Metres: a point this close to a supporting plane (and facing as it does) belongs to it.
   float plane_distance = 0.008f;
   /// Degrees: where the normals of neighbours turn by more than this in a valley (a concave
