@@ -109,21 +109,20 @@ void refine(Candidate& c, int region, int steps, const RefinementContext& contex
 }
 
 /// Shape alternatives fit the segment's shape alike by construction, so their objectives differ by
-/// ICP's noise, which would drown the colour's evidence: the objective only rules out a candidate
-/// that fits clearly worse (below this share of the best's).
+/// ICP's noise, which would drown the colour's evidence: the objective only rules out an
+/// alternative that fits clearly worse than the instance (below this share of its objective).
 constexpr float kFitFloor = 0.9f;
 
-/// The candidates' judgements: less the shares in free space and left unexplained, plus the colour
-/// agreement where every candidate has colour evidence; -1 for one below kFitFloor.
+/// The candidates' judgements (the instance first): less the shares in free space and left
+/// unexplained, plus the colour agreement where every candidate has colour evidence; -1 for an
+/// alternative below kFitFloor.
 void judge(std::vector<Candidate>& candidates) {
-  float best = 0;
-  for (const Candidate& c : candidates) best = std::max(best, c.lcp.score);
+  const float floor = kFitFloor * candidates.front().lcp.score;
   const bool coloured = std::all_of(candidates.begin(), candidates.end(),
                                     [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
-    const bool fits = c.lcp.score >= kFitFloor * best;
-    c.judgement =
-        (fits ? 0.0f : -1.0f) - c.free - c.unexplained + (coloured ? c.colour.agreement : 0);
+    c.judgement = (c.lcp.score >= floor ? 0.0f : -1.0f) - c.free - c.unexplained +
+                  (coloured ? c.colour.agreement : 0);
   }
 }
 
@@ -138,14 +137,15 @@ ShapeAlternative motionBetween(const Eigen::Isometry3f& from, const Candidate& t
   return a;
 }
 
-/// The candidate to keep: the instance itself unless an alternative is judged better by at least
-/// kAlternativeTie (switching needs evidence; in a tie StoCS's own ranking stands).
-const Candidate& chosen(const std::vector<Candidate>& candidates) {
+/// Index of the candidate to keep: 0, the instance itself, unless an alternative is judged better
+/// by at least kAlternativeTie (switching needs evidence; in a tie StoCS's own ranking stands).
+size_t chosen(const std::vector<Candidate>& candidates) {
   const auto best = std::max_element(
       candidates.begin(), candidates.end(),
       [](const Candidate& a, const Candidate& b) { return a.judgement < b.judgement; });
-  return best->judgement - candidates.front().judgement >= kAlternativeTie ? *best
-                                                                           : candidates.front();
+  return best->judgement - candidates.front().judgement >= kAlternativeTie
+             ? static_cast<size_t>(best - candidates.begin())
+             : 0;
 }
 
 /// The candidates that fit as well as `best`, as motions from it: each a pose of its own (not
@@ -187,15 +187,19 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     measure(candidates[k], instance.region);
   }
   judge(candidates);
-  const Candidate& choice = chosen(candidates);
-  const bool turned = &choice != &candidates.front();  // an alternative, not the instance itself
-  Candidate best = choice;
-  instance.ambiguous = equallyFitting(candidates, best, model);
-  if (turned && context.icp) {
-    refine(best, instance.region, context.icp->params().iterations, context, taken);
-    measure(best, instance.region);
+  size_t kept = chosen(candidates);
+  if (kept > 0 && context.icp) {
+    // The rest of the steps can take it elsewhere (into free space): judged again there, it must
+    // still be better than the instance.
+    refine(candidates[kept], instance.region, context.icp->params().iterations, context, taken);
+    measure(candidates[kept], instance.region);
+    judge(candidates);
+    if (candidates[kept].judgement <= candidates.front().judgement) kept = 0;
   }
   steps += taken;
+  const Candidate& best = candidates[kept];
+  const bool turned = kept > 0;  // an alternative, not the instance itself
+  instance.ambiguous = equallyFitting(candidates, best, model);
   if (turned) {
     instance.pose = best.pose;
     instance.lcp = best.lcp;
