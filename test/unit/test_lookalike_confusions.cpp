@@ -124,7 +124,8 @@ cv::Mat maskVisib(const BopDataset& ds, int scene, int im, size_t i) {
 
 /// The mask of the visible instances of `objects` in an image.
 cv::Mat visibleMask(const BopDataset& ds, int scene, int im, const std::set<int>& objects) {
-  const std::vector<BopGtInstance>& gt = ds.sceneGroundTruth(scene).at(im);
+  const std::vector<BopGtInstance> gt =
+      ds.sceneGroundTruth(scene).at(im);  // a copy: the map is a temporary
   cv::Mat mask;
   for (size_t i = 0; i < gt.size(); ++i) {
     const cv::Mat m = maskVisib(ds, scene, im, i);
