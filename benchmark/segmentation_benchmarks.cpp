@@ -2,11 +2,16 @@
 // (models/segmenter.onnx) on a 640x480 colour image: the network with its activation at the
 // output's size (outputMaps), the six objects' maps upsampled to the image into one buffer as
 // 32-bit or 8-bit (what the node publishes), and the whole segment() (all seven maps, float).
+// Then the segmentation from depth alone on the demo's generated 640x480 frame (six objects, two
+// distractors): the regions (geometricSegment), and the regions with the six objects' maps
+// (geometricMaps, what `--prob geometric` costs a frame).
 //   build/.../stocs_segmentation_benchmarks
 #include <benchmark/benchmark.h>
 
 #include <opencv2/core.hpp>
 
+#include "benchmark_frames.h"
+#include "stocs/segmentation/geometric_segmentation.h"
 #include "stocs/segmentation/segmentation_network.h"
 
 namespace stocs::bench {
@@ -50,6 +55,24 @@ void segment(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(network().segment(colourImage()));
 }
 
+void geometricSegment(benchmark::State& state) {
+  const stocs::Frame& frame = demoScene().frame;
+  GeometricSegmenter segmenter;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(segmenter.segment(frame.cloud, *frame.camera).regions.data());
+  }
+}
+
+void geometricMaps(benchmark::State& state) {
+  const SceneFrame& scene = demoScene();
+  stocs::Frame frame = scene.frame;
+  GeometricSegmenter segmenter;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(setGeometricProbabilities(frame, scene.objects, segmenter).planes);
+  }
+  state.counters["objects"] = static_cast<double>(scene.objects.size());
+}
+
 BENCHMARK(outputMaps)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(upsampleObjects)
     ->ArgName("depth")
@@ -59,6 +82,8 @@ BENCHMARK(upsampleObjects)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(segment)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(geometricSegment)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(geometricMaps)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace stocs::bench

@@ -10,9 +10,10 @@ foreach(name stage scaling)
   add_executable(stocs_${name}_benchmarks ${PROJECT_SOURCE_DIR}/benchmark/${name}_benchmarks.cpp)
   target_link_libraries(stocs_${name}_benchmarks PRIVATE stocs_benchmark_frames benchmark::benchmark)
 endforeach()
-# The segmentation node's stages (benchmark/segmentation_benchmarks.cpp).
+# The segmentation node's stages and the segmentation from depth alone
+# (benchmark/segmentation_benchmarks.cpp).
 add_executable(stocs_segmentation_benchmarks ${PROJECT_SOURCE_DIR}/benchmark/segmentation_benchmarks.cpp)
-target_link_libraries(stocs_segmentation_benchmarks PRIVATE stocs_segmentation benchmark::benchmark)
+target_link_libraries(stocs_segmentation_benchmarks PRIVATE stocs_benchmark_frames benchmark::benchmark)
 target_compile_definitions(stocs_segmentation_benchmarks PRIVATE
   STOCS_SEGMENTER_MODEL="${PROJECT_SOURCE_DIR}/models/segmenter.onnx")
 

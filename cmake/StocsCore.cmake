@@ -5,7 +5,8 @@
 #   estimation <- tracking                              (poses followed from frame to frame)
 #   geometry, io <- sim                                 (scene generator, segmentation simulator)
 #   io, sim <- eval                                     (metrics and dataset evaluation)
-#   util <- segmentation <- sim                         (ONNX segmentation networks, OpenCV DNN)
+#   geometry, io <- segmentation <- estimation, sim     (ONNX segmentation networks, OpenCV DNN;
+#                                                        segmentation from depth alone, PCL)
 # `stocs::core` is all of them, for programs that use every module (the tool, the tests).
 
 # stocs_add_module(NAME [PUBLIC deps...] [PRIVATE deps...]): the library stocs_NAME (alias
@@ -52,9 +53,12 @@ target_link_libraries(stocs_mesh_reader PRIVATE stocs_io)
 set_target_properties(stocs_mesh_reader PROPERTIES RUNTIME_OUTPUT_DIRECTORY $<TARGET_FILE_DIR:stocs_io>)
 stocs_add_module(model PUBLIC stocs_geometry PRIVATE stocs_io ${XXHASH_LIBRARY})
 target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
-stocs_add_module(estimation PUBLIC stocs_model PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
+stocs_add_module(estimation PUBLIC stocs_model stocs_segmentation PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
 stocs_add_module(tracking PUBLIC stocs_estimation PRIVATE OpenMP::OpenMP_CXX)
-stocs_add_module(segmentation PUBLIC stocs_util opencv_core PRIVATE opencv_dnn opencv_imgproc)
+stocs_add_module(segmentation PUBLIC stocs_geometry opencv_core
+  PRIVATE stocs_io opencv_dnn opencv_imgproc ${PCL_FEATURES_LIBRARIES} ${PCL_SEGMENTATION_LIBRARIES})
+target_include_directories(stocs_segmentation SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
+target_compile_definitions(stocs_segmentation PRIVATE ${PCL_DEFINITIONS})
 stocs_add_module(sim PUBLIC stocs_io
   PRIVATE stocs_segmentation opencv_imgproc opencv_imgcodecs nlohmann_json::nlohmann_json)
 stocs_add_module(eval PUBLIC stocs_io stocs_sim)

@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "stocs/geometry/mesh.h"
+
 #include "stocs/util/cpu_time.h"
 #include "stocs/util/error.h"
 
@@ -50,6 +54,24 @@ Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
 PoseEstimate detectObject(const ObjectInput& in) {
   return detectObject(*in.cloud, static_cast<float>(in.camera->fx), *in.probability, *in.model,
                       *in.params, in.boundary, in.camera, in.colour);
+}
+
+ObjectSize modelSize(const ObjectModel& model) {
+  constexpr size_t kWidthSamples = 1000;  // enough for a width within a millimetre or two
+  const size_t n = std::min(model.points.size(), kWidthSamples);
+  const std::vector<Eigen::Vector3f> prefix(model.points.begin(), model.points.begin() + n);
+  return {model.diameter, pointSetMinWidth(prefix)};
+}
+
+GeometricSegmentation setGeometricProbabilities(Frame& frame,
+                                                const std::vector<FrameObject>& objects,
+                                                GeometricSegmenter& segmenter) {
+  GeometricSegmentation segmentation = segmenter.segment(frame.cloud, frameCamera(frame));
+  for (const FrameObject& object : objects) {
+    frame.probabilities[object.name] =
+        objectProbability(segmentation, modelSize(object.model->model), segmenter.params());
+  }
+  return segmentation;
 }
 
 CameraIntrinsics frameCamera(const Frame& frame) {

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <optional>
 
+#include "geometric_probability_source.h"
 #include "network_probability_source.h"
 #include "stocs/sim/ground_truth_masks.h"
 #include "stocs/sim/segmentation_input_source.h"
@@ -96,7 +97,9 @@ std::string probabilitySourceHelp() {
       "'real' (the dataset's prob/ maps), 'sim:PRESET' (real maps where prob/ has one, the "
       "segmentation simulator on the ground-truth masks elsewhere) or 'simonly:PRESET' (always "
       "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images: an ONNX file "
-      "with the package network's settings, or a settings YAML naming one); presets: {}; "
+      "with the package network's settings, or a settings YAML naming one), 'geometric' (from the "
+      "depth alone: regions left when the supporting planes and the depth edges are removed, "
+      "those of the object's size); presets: {}; "
       "segmentation inputs: {}",
       fmt::join(segmentationPresetNames(), ", "), segmentationInputHelp());
 }
@@ -104,6 +107,7 @@ std::string probabilitySourceHelp() {
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed) {
   if (spec == "real") return std::make_unique<RealProbabilitySource>(dataset);
+  if (spec == "geometric") return makeGeometricProbabilitySource(dataset);
   if (spec.rfind("onnx:", 0) == 0)
     return makeNetworkProbabilitySource(spec, spec.substr(5), dataset);
   if (isSegmentationInputSpec(spec)) return makeSegmentationInputSource(spec, dataset, seed);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "stocs/eval/segmentation_metrics.h"
 #include "stocs/geometry/surface_sampling.h"
@@ -75,6 +76,29 @@ TEST_F(ProbabilitySourceTest, SimulatedMapsDependOnTheSeedOnly) {
   b->load(0, 0, gt_[0].obj_id);  // asking for another object first changes nothing
   EXPECT_EQ(cv::norm(a->load(0, 0, obj), b->load(0, 0, obj), cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(a->load(0, 0, obj), c->load(0, 0, obj), cv::NORM_INF), 0.0);
+}
+
+TEST_F(ProbabilitySourceTest, GeometricMapsComeFromTheDepthAloneForEveryModel) {
+  std::filesystem::remove_all(root_ / "test" / "000000" / "prob");  // no map to lean on
+  const auto geometric = makeProbabilitySource("geometric", *dataset_, 0);
+  EXPECT_EQ(geometric->spec(), "geometric");
+  EXPECT_TRUE(geometric->available(0, 0, gt_[0].obj_id));
+  EXPECT_FALSE(geometric->available(0, 0, 99));  // no model in the dataset
+  cv::Mat anywhere(480, 640, CV_8UC1, cv::Scalar(0));
+  int covered = 0;
+  for (const BopGtInstance& g : gt_) {
+    const cv::Mat map = geometric->load(0, 0, g.obj_id);
+    ASSERT_EQ(map.type(), CV_32FC1);
+    ASSERT_EQ(map.size(), anywhere.size());
+    covered += cv::mean(map, mask(g.obj_id))[0] > 0.2;
+    anywhere |= mask(g.obj_id);
+  }
+  EXPECT_GE(covered, 2);  // an object hidden behind another may fit no region
+  // The table is no candidate: far from the objects every map is 0.
+  cv::Mat near;
+  cv::dilate(anywhere, near, cv::Mat(), cv::Point(-1, -1), 20);
+  const cv::Mat far = ~near & (dataset_->loadDepth(0, 0) > 0);
+  EXPECT_LT(cv::mean(geometric->load(0, 0, gt_[0].obj_id), far)[0], 0.05);
 }
 
 TEST_F(ProbabilitySourceTest, UnknownSourcesAndPresetsAreRefusedWithTheKnownOnes) {

@@ -14,6 +14,7 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"
 #include "stocs/model/model_cache.h"
+#include "stocs/segmentation/geometric_segmentation.h"
 
 namespace stocs {
 
@@ -81,6 +82,18 @@ ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
 /// A temporary camera would not outlive the input that points to it.
 ObjectInput objectInput(const Frame& frame, CameraIntrinsics&& camera, const FrameObject& object,
                         const PipelineParams& params) = delete;
+
+/// Depth alone in place of a network: segments the frame's cloud with `segmenter` and sets the
+/// probability map of every object of `objects` to the union of the regions that can hold it
+/// (objectProbability, by its model's diameter and thinnest width). Returns the segmentation.
+/// Throws InputError as GeometricSegmenter::segment does (an empty cloud, one without depth).
+GeometricSegmentation setGeometricProbabilities(Frame& frame,
+                                                const std::vector<FrameObject>& objects,
+                                                GeometricSegmenter& segmenter);
+
+/// A prepared model's size for the geometric segmentation: its diameter, and the thinnest width of
+/// its first samples (an unbiased subsample).
+ObjectSize modelSize(const ObjectModel& model);
 
 /// Runs `step`, the work of one object, prefixing an InputError it throws with the object's name
 /// ("object 'cat': ...").

@@ -45,4 +45,9 @@ inline Colour toColour(const Rgba& rgba) {
 /// contain the diameter's endpoints up to a relative error below 1e-3).
 float pointSetDiameter(const std::vector<Eigen::Vector3f>& points);
 
+/// Smallest width of the points: the thinnest slab holding them, searched over 256 directions and
+/// refined around the best (an upper bound, within about 1% of the exact one for a box). A set
+/// inside another is never wider at its thinnest.
+float pointSetMinWidth(const std::vector<Eigen::Vector3f>& points);
+
 }  // namespace stocs
