@@ -51,64 +51,76 @@ Claim claimOf(const FramePose& p, const FreeSpaceCheck& visibility) {
   return c;
 }
 
-/// Whether claim a's pixel (its map value `map_a`) explains it better than claim b's: the map
-/// first (the network's word on which object is there), then the confidence, then the order.
-bool explainsBetter(const std::vector<Claim>& claims, int a, float map_a, int b, float map_b) {
-  if (map_a != map_b) return map_a > map_b;
-  if (claims[a].confidence != claims[b].confidence) {
-    return claims[a].confidence > claims[b].confidence;
-  }
-  return a < b;
-}
+/// Per pixel, the two living claims with the highest map there (-1: none), ties included: enough
+/// to tell whether another claim explains a pixel at least as well as a given one.
+struct TopTwo {
+  std::vector<int> first, second;
+  std::vector<float> first_map, second_map;
+};
 
-/// Per pixel, the living claim that explains it best (-1: none).
-std::vector<int> owners(const std::vector<Claim>& claims, int pixel_count) {
-  std::vector<int> owner(pixel_count, -1);
-  std::vector<float> owner_map(pixel_count, 0);
+TopTwo topTwo(const std::vector<Claim>& claims, int pixel_count) {
+  TopTwo t{std::vector<int>(pixel_count, -1), std::vector<int>(pixel_count, -1),
+           std::vector<float>(pixel_count, 0), std::vector<float>(pixel_count, 0)};
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
     for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
       const int p = claims[i].pixels[k];
       const float m = claims[i].map[k];
-      if (owner[p] < 0 || explainsBetter(claims, i, m, owner[p], owner_map[p])) {
-        owner[p] = i;
-        owner_map[p] = m;
+      if (t.first[p] < 0 || m > t.first_map[p]) {
+        t.second[p] = t.first[p];
+        t.second_map[p] = t.first_map[p];
+        t.first[p] = i;
+        t.first_map[p] = m;
+      } else if (t.second[p] < 0 || m > t.second_map[p]) {
+        t.second[p] = i;
+        t.second_map[p] = m;
       }
     }
   }
-  return owner;
+  return t;
 }
 
-/// A claim's pixels that others own, in all and by the claim owning most of them.
+/// The share of a claim's pixels that another living claim confirms with at least as high a map
+/// (the network says that object is there as much or more), and the claim explaining most of them.
 struct Explained {
   float share = 0;
   int by = -1;
 };
 
-Explained explainedShare(const std::vector<Claim>& claims, int i, const std::vector<int>& owner) {
+Explained explainedShare(const std::vector<Claim>& claims, int i, const TopTwo& t) {
   std::vector<int> by(claims.size(), 0);
-  int lost = 0;
-  for (int p : claims[i].pixels) {
-    if (owner[p] == i) continue;
-    ++lost;
-    ++by[owner[p]];
+  int explained = 0;
+  for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
+    const int p = claims[i].pixels[k];
+    const bool first = t.first[p] == i;
+    const int other = first ? t.second[p] : t.first[p];
+    const float other_map = first ? t.second_map[p] : t.first_map[p];
+    if (other < 0 || other_map < claims[i].map[k]) continue;
+    ++explained;
+    ++by[other];
   }
-  if (claims[i].pixels.empty()) return {};
+  if (explained == 0) return {};
   const auto most = std::max_element(by.begin(), by.end());
-  return {static_cast<float>(lost) / claims[i].pixels.size(),
-          lost > 0 ? static_cast<int>(most - by.begin()) : -1};
+  return {static_cast<float>(explained) / claims[i].pixels.size(),
+          static_cast<int>(most - by.begin())};
 }
 
-/// The living claim of lowest confidence explained above the limit by others (first: -1 if none).
-std::pair<int, int> worstExplained(const std::vector<Claim>& claims, const std::vector<int>& owner,
-                                   float max_share) {
+/// The living claim most explained by others above the limit, the lower confidence on a tie
+/// (first: -1 if none), and the claim explaining most of it. Most redundant first: a pose slid
+/// across two boxes goes before the two right poses, each of which it covers by half.
+std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const TopTwo& t,
+                                  float max_share) {
   std::pair<int, int> worst{-1, -1};
+  float worst_share = 0;
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
-    const Explained e = explainedShare(claims, i, owner);
+    const Explained e = explainedShare(claims, i, t);
     if (e.share <= max_share) continue;
-    if (worst.first < 0 || claims[i].confidence <= claims[worst.first].confidence) {
+    const bool tie = worst.first >= 0 && e.share == worst_share;
+    if (worst.first < 0 || e.share > worst_share ||
+        (tie && claims[i].confidence < claims[worst.first].confidence)) {
       worst = {i, e.by};
+      worst_share = e.share;
     }
   }
   return worst;
@@ -142,8 +154,8 @@ void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibilit
   for (const FramePose& p : poses) claims.push_back(claimOf(p, visibility));
   const int pixel_count = visibility.camera().width * visibility.camera().height;
   for (;;) {
-    const std::vector<int> owner = owners(claims, pixel_count);
-    const auto [worst, by] = worstExplained(claims, owner, params.max_explained_share);
+    const auto [worst, by] =
+        mostExplained(claims, topTwo(claims, pixel_count), params.max_explained_share);
     if (worst < 0) return;
     claims[worst].alive = false;
     InstancePose& rejected = *poses[worst].pose;

@@ -27,7 +27,7 @@ struct FrameExplanationParams {
   /// A pose is rejected when more than this share of its confirmed surface is explained by other
   /// accepted poses. A right pose shares only its outline with its neighbours; a pose on another
   /// object's surface shares nearly all of it. One half: the pose's own evidence is then less than
-  /// what others explain better.
+  /// what others explain as well or better.
   float max_explained_share = 0.5f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
@@ -45,12 +45,13 @@ struct FramePose {
   InstancePose* pose = nullptr;          ///< judged in place
 };
 
-/// Among the accepted poses of `poses`, each measured pixel a pose confirms (a camera-facing model
+/// Among the accepted poses of `poses`: each measured pixel a pose confirms (a camera-facing model
 /// sample within the free-space margin of the measured depth, splatted over the sample spacing)
-/// goes to the pose whose object's map is highest there, then to the higher confidence. While
-/// some accepted pose has more than max_explained_share of its pixels owned by others, the one of
-/// them with the lowest confidence is rejected, named after the pose owning most of its pixels,
-/// and the pixels are shared again. Does nothing when disabled.
+/// is explained by another pose when that pose confirms it too with at least as high a map of its
+/// object there. While some accepted pose has more than max_explained_share of its pixels
+/// explained by others, the one with the largest such share (the lower confidence on a tie) is
+/// rejected, named after the pose explaining most of its pixels, and the shares are counted again.
+/// Does nothing when disabled.
 void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibility,
                   const FrameExplanationParams& params);
 
