@@ -20,7 +20,9 @@ const ParamSet<PipelineParams>& PipelineParams::schema() {
                 "Model preparation")
           .nest(&PipelineParams::stocs, "stocs", StocsParams::schema(), "StoCS (paper section 3)")
           .nest(&PipelineParams::confidence, "confidence", ConfidenceParams::schema(),
-                "Confidence and rejection (docs/confidence.md)");
+                "Confidence and rejection (docs/confidence.md)")
+          .nest(&PipelineParams::explanation, "explanation", FrameExplanationParams::schema(),
+                "Frame-level explanation (docs/confidence.md)");
   return schema;
 }
 

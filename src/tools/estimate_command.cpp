@@ -69,6 +69,13 @@ NearestInstance nearestInstance(const std::vector<Eigen::Vector3f>& points_mm,
   return best;
 }
 
+/// The options' parameters for `method`: the frame-level explanation ranks poses by their
+/// confidence, so only a method that gives one is explained.
+PipelineParams frameParams(PipelineParams params, const PoseMethod& method) {
+  params.explanation.enabled = params.explanation.enabled && method.givesConfidence();
+  return params;
+}
+
 /// An image of the dataset and the objects the run estimates in it.
 struct ImageTargets {
   int scene = 0, im = 0;
@@ -92,6 +99,7 @@ class EstimateRun {
   explicit EstimateRun(const EstimateOptions& o)
       : o_(o),
         method_(makeMethod(o.method, o.method_options)),
+        params_(frameParams(o.params, *method_)),
         dataset_(o.dataset, o.split),
         probabilities_(makeProbabilitySource(o.prob, dataset_, o.params.stocs.seed)),
         info_(dataset_.modelsInfo()),
@@ -229,7 +237,7 @@ class EstimateRun {
       // The process's first estimate pays once for thread pools and first-touch memory, which a
       // running node pays at start-up: it runs here, untimed and discarded.
       frame.cloud = cloudFromDepth(depth, *frame.camera, metres_per_unit);
-      estimateFrame(frame, {objects.front()}, o_.params, estimate);
+      estimateFrame(frame, {objects.front()}, params_, estimate);
       fmt::print(stderr, "warm-up: object {} of scene {} image {} estimated once, untimed\n",
                  objects.front().name, image.scene, image.im);
       warm_up_ = false;
@@ -242,7 +250,7 @@ class EstimateRun {
       frame.cloud = cloudFromDepth(depth, *frame.camera, metres_per_unit);
       std::vector<ObjectResult> results = tracker_
                                               ? trackImage(image, frame, objects, timed)
-                                              : estimateFrame(frame, objects, o_.params, estimate);
+                                              : estimateFrame(frame, objects, params_, estimate);
       image_times.push_back(
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       for (size_t k = 0; k < results.size(); ++k) {
@@ -353,6 +361,7 @@ class EstimateRun {
 
   const EstimateOptions& o_;
   const std::unique_ptr<PoseMethod> method_;
+  const PipelineParams params_;  // the estimation's, as frameParams gives them
   const BopDataset dataset_;
   const std::unique_ptr<ProbabilitySource> probabilities_;
   const std::map<int, BopObjectInfo> info_;

@@ -2,6 +2,7 @@
 // The per-object step of a frame's estimation (estimateFrame, frame.h): the object's soft segment,
 // the StoCS search on it (StocsEstimator::search) and each pose judged; and every parameter of it.
 
+#include "stocs/estimation/stages/frame_explanation.h"
 #include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/estimation/stages/pose_confidence.h"
 #include "stocs/estimation/stages/soft_segment.h"
@@ -23,6 +24,7 @@ struct PipelineParams {
   ModelPreparationParams model;
   StocsParams stocs;
   ConfidenceParams confidence;
+  FrameExplanationParams explanation;  ///< after every object of a frame (estimateFrame)
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<PipelineParams>& schema();

@@ -1,0 +1,58 @@
+#pragma once
+// The frame-level explanation (issue 45): after every object of a frame has its poses, each
+// measured point is explained by at most one accepted pose. Each object is judged alone before it,
+// so an absent look-alike fitted on a present object, or a second pose of one box in a bin, is as
+// consistent with the depth and its own map as a right pose; here poses that claim the same
+// measured surface compete for it, and a pose most of whose confirmed surface another pose
+// explains better is rejected ("explained by <object> <k>").
+
+#include <string>
+#include <vector>
+
+#include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/model/object_model.h"
+#include "stocs/util/param_set.h"
+
+namespace cv {
+class Mat;
+}
+
+namespace stocs {
+
+struct InstancePose;
+
+struct FrameExplanationParams {
+  /// Choose the published poses of a frame jointly (explainPoses).
+  bool enabled = true;
+  /// A pose is rejected when more than this share of its confirmed surface is explained by other
+  /// accepted poses. A right pose shares only its outline with its neighbours; a pose on another
+  /// object's surface shares nearly all of it. One half: the pose's own evidence is then less than
+  /// what others explain as well or better.
+  float max_explained_share = 0.5f;
+
+  /// Key, range, unit and meaning of every field (docs/parameters.md).
+  static const ParamSet<FrameExplanationParams>& schema();
+  /// Throws InputError naming the first value out of range.
+  void validate() const;
+};
+
+/// One pose of the frame, as the explanation reads and judges it.
+struct FramePose {
+  std::string object;  ///< the object's name, for the reason
+  int instance = 0;    ///< its index among the object's instances, for the reason
+  const ObjectModel* model = nullptr;
+  const cv::Mat* probability = nullptr;  ///< the object's map (CV_32FC1, the cloud's size)
+  InstancePose* pose = nullptr;          ///< judged in place
+};
+
+/// Among the accepted poses of `poses`: each measured pixel a pose confirms (a camera-facing model
+/// sample within the free-space margin of the measured depth, splatted over the sample spacing)
+/// is explained by another pose when that pose confirms it too with at least as high a map of its
+/// object there. While some accepted pose has more than max_explained_share of its pixels
+/// explained by others, the one with the largest such share (the lower confidence on a tie) is
+/// rejected, named after the pose explaining most of its pixels, and the shares are counted again.
+/// Does nothing when disabled.
+void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibility,
+                  const FrameExplanationParams& params);
+
+}  // namespace stocs

@@ -1,0 +1,127 @@
+// The frame-level explanation on rendered boxes with hand-set poses, maps and confidences: an
+// absent look-alike fitted on the present box, a second pose of one box in a bin, and two separate
+// objects (nothing lost).
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "stocs/estimation/pose_estimate.h"
+#include "stocs/estimation/stages/frame_explanation.h"
+#include "test_support.h"
+
+namespace stocs {
+namespace {
+
+const Eigen::Vector3f kBox(0.09f, 0.055f, 0.035f);
+const Eigen::Vector3f kSmallBox(0.08f, 0.05f, 0.04f);  // within 20% per side: a look-alike
+
+/// A box 0.6 m in front of the camera, its largest face towards it.
+Eigen::Isometry3f at(float x, float y) {
+  Eigen::Isometry3f pose = Eigen::Isometry3f::Identity();
+  pose.translation() = Eigen::Vector3f(x, y, 0.6f);
+  return pose;
+}
+
+InstancePose instance(const Eigen::Isometry3f& pose, float confidence) {
+  InstancePose p;
+  p.pose = pose;
+  p.confidence = confidence;
+  return p;
+}
+
+/// A depth frame of boxes of size kBox at `placed`, and a map per box of `level` on its pixels.
+class FrameExplanationTest : public ::testing::Test {
+ protected:
+  void render(const std::vector<Eigen::Isometry3f>& placed) {
+    std::vector<test::PlacedMesh> meshes;
+    for (const Eigen::Isometry3f& pose : placed) meshes.push_back({boxMesh(kBox), pose});
+    depth_ = test::renderDepth(meshes, camera_, &labels_);
+    cloud_ = cloudFromDepth(depth_, camera_, 1.0);
+  }
+  /// `level` on the pixels of rendered box `index` (0-based), 0 elsewhere.
+  cv::Mat map(int index, float level) const {
+    cv::Mat m(labels_.size(), CV_32FC1, cv::Scalar(0));
+    m.setTo(level, labels_ == index + 1);
+    return m;
+  }
+  void explain(std::vector<FramePose>& poses, const FrameExplanationParams& params = {}) const {
+    explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), params);
+  }
+
+  const CameraIntrinsics camera_ = test::testCamera();
+  const ObjectModel box_ = prepareModel(boxMesh(kBox), ModelSamplingParams{});
+  const ObjectModel small_box_ = prepareModel(boxMesh(kSmallBox), ModelSamplingParams{});
+  cv::Mat depth_, labels_;
+  OrganizedCloud cloud_;
+};
+
+TEST_F(FrameExplanationTest, AnAbsentLookAlikeOnThePresentBoxIsExplainedByIt) {
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);
+  render({pose});
+  const cv::Mat box_map = map(0, 0.9f), small_map = map(0, 0.7f);  // both mark the box
+  // The look-alike's confidence is the higher: the maps say which object is there.
+  InstancePose box = instance(pose, 0.90f), small = instance(pose, 0.95f);
+  std::vector<FramePose> poses = {{"box", 0, &box_, &box_map, &box},
+                                  {"small_box", 0, &small_box_, &small_map, &small}};
+  explain(poses);
+  EXPECT_TRUE(box.accepted);
+  EXPECT_FALSE(small.accepted);
+  EXPECT_EQ(small.rejection, "explained by box 0");
+}
+
+TEST_F(FrameExplanationTest, TwoPosesOfOneBoxInABinKeepOne) {
+  const Eigen::Isometry3f a = at(-0.046f, 0), b = at(0.046f, 0);  // touching
+  render({a, b});
+  Eigen::Isometry3f slid = a;
+  slid.translation().x() += 0.01f;  // the first box again, slid by a centimetre
+  cv::Mat bin = map(0, 0.9f) + map(1, 0.9f);
+  InstancePose first = instance(a, 0.92f), second = instance(slid, 0.90f),
+               other = instance(b, 0.91f);
+  std::vector<FramePose> poses = {{"box", 0, &box_, &bin, &first},
+                                  {"box", 1, &box_, &bin, &second},
+                                  {"box", 2, &box_, &bin, &other}};
+  explain(poses);
+  EXPECT_TRUE(first.accepted);
+  EXPECT_TRUE(other.accepted);  // its neighbour shares only its outline
+  EXPECT_FALSE(second.accepted);
+  EXPECT_EQ(second.rejection, "explained by box 0");
+}
+
+TEST_F(FrameExplanationTest, TwoSeparateObjectsAreBothKept) {
+  const Eigen::Isometry3f a = at(-0.07f, 0), b = at(0.07f, 0.02f);
+  render({a, b});
+  const cv::Mat map_a = map(0, 0.9f), map_b = map(1, 0.8f);
+  InstancePose pa = instance(a, 0.6f), pb = instance(b, 0.99f);
+  std::vector<FramePose> poses = {{"a", 0, &box_, &map_a, &pa}, {"b", 0, &box_, &map_b, &pb}};
+  explain(poses);
+  EXPECT_TRUE(pa.accepted);
+  EXPECT_TRUE(pb.accepted);
+}
+
+TEST_F(FrameExplanationTest, OnlyAcceptedPosesExplainAndDisabledChangesNothing) {
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);
+  render({pose});
+  const cv::Mat box_map = map(0, 0.9f), small_map = map(0, 0.7f);
+  InstancePose box = instance(pose, 0.2f), small = instance(pose, 0.95f);
+  box.accepted = false;  // below min_confidence: it explains nothing
+  box.rejection = "confidence";
+  std::vector<FramePose> poses = {{"box", 0, &box_, &box_map, &box},
+                                  {"small_box", 0, &small_box_, &small_map, &small}};
+  explain(poses);
+  EXPECT_TRUE(small.accepted);
+  EXPECT_EQ(box.rejection, "confidence");
+  box.accepted = true;
+  FrameExplanationParams off;
+  off.enabled = false;
+  explain(poses, off);
+  EXPECT_TRUE(small.accepted);
+}
+
+TEST(FrameExplanationParams, RejectsAShareOutsideZeroToOne) {
+  FrameExplanationParams params;
+  params.max_explained_share = 1.5f;
+  test::expectInputError([&] { params.validate(); }, "max_explained_share");
+}
+
+}  // namespace
+}  // namespace stocs
