@@ -114,8 +114,10 @@ add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses $
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}
   DEPENDENCIES test_bad_inputs ${STOCS_ROS_TEST_DEPENDS})
-add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA}
-  DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
+foreach(config absent absent_detection)
+  add_rostest(test/ros/absent_objects.test ARGS data:=${STOCS_ROS_TEST_DATA} config:=${config}
+    DEPENDENCIES test_rejected_objects ${STOCS_ROS_TEST_DEPENDS})
+endforeach()
 add_rostest(test/ros/bad_config.test DEPENDENCIES test_bad_config stocs_node scene_publisher
   segmentation_node)
 add_rostest(test/ros/sequence_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}

@@ -41,24 +41,6 @@ const cv::Mat* colourOf(const Frame& frame) {
   return &colour;
 }
 
-/// The frame-level explanation (explainPoses) over every instance of every object's estimate.
-void explainFrame(const Frame& frame, const CameraIntrinsics& camera,
-                  const std::vector<FrameObject>& objects, std::vector<ObjectResult>& results,
-                  const PipelineParams& params) {
-  if (!params.explanation.enabled) return;
-  std::vector<FramePose> poses;
-  for (size_t i = 0; i < results.size(); ++i) {
-    const cv::Mat* map = &frame.probabilities.at(objects[i].name);
-    std::vector<InstancePose>& instances = results[i].estimate.instances;
-    for (size_t k = 0; k < instances.size(); ++k) {
-      poses.push_back(
-          {objects[i].name, static_cast<int>(k), &objects[i].model->model, map, &instances[k]});
-    }
-  }
-  explainPoses(poses, FreeSpaceCheck(frame.cloud, camera, params.stocs.free_space),
-               params.explanation);
-}
-
 }  // namespace
 
 Frame Frame::fromDepth(const cv::Mat& depth, const CameraIntrinsics& camera,
@@ -139,8 +121,27 @@ std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<Fr
       results.push_back(std::move(result));
     });
   }
-  explainFrame(frame, camera, objects, results, params);
+  std::vector<PoseEstimate*> estimates;
+  for (ObjectResult& result : results) estimates.push_back(&result.estimate);
+  explainFrame(frame, camera, objects, estimates, params);
   return results;
+}
+
+void explainFrame(const Frame& frame, const CameraIntrinsics& camera,
+                  const std::vector<FrameObject>& objects,
+                  const std::vector<PoseEstimate*>& estimates, const PipelineParams& params) {
+  if (!params.explanation.enabled) return;
+  std::vector<FramePose> poses;
+  for (size_t i = 0; i < estimates.size(); ++i) {
+    const cv::Mat* map = &probabilityOf(frame, objects[i].name);
+    std::vector<InstancePose>& instances = estimates[i]->instances;
+    for (size_t k = 0; k < instances.size(); ++k) {
+      poses.push_back(
+          {objects[i].name, static_cast<int>(k), &objects[i].model->model, map, &instances[k]});
+    }
+  }
+  explainPoses(poses, FreeSpaceCheck(frame.cloud, camera, params.stocs.free_space),
+               params.explanation);
 }
 
 }  // namespace stocs

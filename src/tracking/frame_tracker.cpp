@@ -116,6 +116,7 @@ FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObj
     forObject(objects[k].name, [&] { t = in.trackers[k]->conclude(); });
     add(out, objects[k].name, std::move(t), follow_cpu[k] + processCpuSeconds() - cpu_start);
   }
+  explain(frame, camera, objects, params, out);
   return out;
 }
 
@@ -148,7 +149,31 @@ FrameTracking FrameTracker::follow(const Frame& frame, const std::vector<FrameOb
     }
     add(out, objects[k].name, std::move(followed[k]), cpu[k]);
   }
+  explain(frame, camera, objects, params, out);
   return out;
+}
+
+void FrameTracker::explain(const Frame& frame, const CameraIntrinsics& camera,
+                           const std::vector<FrameObject>& objects, const PipelineParams& params,
+                           FrameTracking& out) {
+  std::vector<PoseEstimate*> estimates;
+  for (TrackedObject& object : out.objects) estimates.push_back(&object.result.estimate);
+  explainFrame(frame, camera, objects, estimates, params);
+  for (size_t i = 0; i < out.objects.size(); ++i) {
+    TrackedObject& object = out.objects[i];
+    for (size_t k = 0; k < object.states.size(); ++k) {
+      TrackState& state = object.states[k];
+      InstancePose& pose = object.result.estimate.instances[k];
+      if ((state != TrackState::kTracked && state != TrackState::kRedetected) || pose.accepted) {
+        continue;
+      }
+      --(state == TrackState::kTracked ? out.counts.tracked : out.counts.redetected);
+      ++out.counts.lost;
+      state = TrackState::kLost;
+      pose.rejection = "lost: " + pose.rejection;
+      objects_.at(objects[i].name).lose(k);
+    }
+  }
 }
 
 std::map<std::string, std::vector<int>> FrameTracker::merge(const FrameDetection& detection,

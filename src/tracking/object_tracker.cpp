@@ -152,7 +152,7 @@ class ObjectTracker::Step {
     }
     if (tracker_.tracks_.empty() && tracker_.unfound_) {
       InstancePose pose = *tracker_.unfound_;
-      pose.rejection = "not tracked: the last detection's best pose has " + pose.rejection;
+      pose.rejection = "not tracked: the last detection's best pose: " + pose.rejection;
       e.instances.push_back(std::move(pose));
       out.states.push_back(TrackState::kUntracked);
     }
@@ -218,6 +218,12 @@ std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const Prepa
   std::vector<int> taken = assignment.assign(detection);
   confirm_detection_ = assignment.moved();
   return taken;
+}
+
+void ObjectTracker::lose(size_t index) {
+  Track& track = tracks_.at(index);
+  track.state = TrackState::kLost;
+  track.motion.stop();
 }
 
 void ObjectTracker::detectionRan(const PoseEstimate& detection) {

@@ -1,6 +1,6 @@
 // Writes the generated data the ROS integration tests play: the one-image BOP dataset of the CLI
 // test (an asymmetric box at a known pose) and node configurations for it, one per input form; and
-// a copy with two objects that are not in the frame, for the rejection test; and the demo's
+// a copy with objects that are not in the frame, for the rejection test; and the demo's
 // configuration with each segmentation input form, for the generated scene.
 //   make_test_data OUT_DIR DEMO_CONFIG
 #include <filesystem>
@@ -31,23 +31,31 @@ constexpr char kAbsentObjects[] = R"(objects:
   - name: noise
     id: 2
     model: absent/models/obj_000002.ply
+  - name: lookalike
+    id: 3
+    model: absent/models/obj_000003.ply
 model_cache: cache
 )";
 
-/// The box frame with one more object that is not in it, "noise" (a flat plate), whose map is low
-/// background noise with a few blobs, as a network could emit for an absent object. (A map of
-/// class confusion is not tested here: a confused shape that fits the box's visible face is
-/// accepted, see docs/confidence.md.)
+/// The box frame with two more objects that are not in it: "noise" (a flat plate), whose map is
+/// low background noise with a few blobs, as a network could emit for an absent object; and
+/// "lookalike", the box 10% smaller, whose map marks the present box at 70% of the box's own (a
+/// network's class confusion), which the frame-level explanation gives to the box.
 void writeAbsentObjects(const std::filesystem::path& root) {
   stocs::test::writeSyntheticBopDataset(root);
   const stocs::MeshData plate = stocs::boxMesh(Eigen::Vector3f(0.12f, 0.09f, 0.01f));
   const stocs::MeshData box = stocs::asymmetricMesh();
+  stocs::MeshData lookalike = box;
+  for (Eigen::Vector3f& v : lookalike.vertices) v *= 0.9f;
   stocs::writePly(root / "models" / "obj_000002.ply", plate, 1000.0f);
+  stocs::writePly(root / "models" / "obj_000003.ply", lookalike, 1000.0f);
   std::ofstream(root / "models" / "models_info.json")
       << R"({"1": {"diameter": )" << stocs::pointSetDiameter(box.vertices) * 1000
-      << R"(}, "2": {"diameter": )" << stocs::pointSetDiameter(plate.vertices) * 1000 << "}}";
+      << R"(}, "2": {"diameter": )" << stocs::pointSetDiameter(plate.vertices) * 1000
+      << R"(}, "3": {"diameter": )" << stocs::pointSetDiameter(lookalike.vertices) * 1000 << "}}";
   const std::filesystem::path prob = root / "test" / "000000" / "prob";
   const cv::Mat present = cv::imread((prob / "000000_000001.png").string(), cv::IMREAD_UNCHANGED);
+  cv::imwrite((prob / "000000_000003.png").string(), present * 0.7);
   cv::Mat noise(present.size(), CV_16UC1);
   cv::RNG random(5);
   random.fill(noise, cv::RNG::UNIFORM, 0, 3000);
@@ -83,6 +91,8 @@ int main(int argc, char** argv) {
       << kObject << "output:\n  frame: nowhere\n  transform_timeout: 0.05\n";
   writeAbsentObjects(out / "absent");
   std::ofstream(out / "absent.yaml") << kAbsentObjects;
+  // The same with detection in every frame, for the explanation outside tracking.
+  std::ofstream(out / "absent_detection.yaml") << kAbsentObjects << "tracking:\n  enabled: false\n";
   const std::string demo = stocs::readTextFile(argv[2]);
   for (const char* form : {"labels", "masks", "boxes"}) {
     std::ofstream(out / (std::string("synth_scene_") + form + ".yaml"))

@@ -212,6 +212,28 @@ TEST_F(TrackerTest, AnObjectWhoseMapVanishesIsLostThenFoundAgain) {
   EXPECT_EQ(tracked.objects[0].states, std::vector<TrackState>{TrackState::kTracked});
 }
 
+TEST_F(TrackerTest, ALookAlikeOnAnotherObjectsSurfaceIsLostInEveryFrame) {
+  // "twin" has the block's shape and a map that marks the block fainter than the block's own:
+  // alone it would be tracked there; the frame-level explanation gives the surface to the block.
+  const std::string file = (test::scratchDir("tracker") / "twin.ply").string();
+  writePly(file, asymmetricMesh(), 1000.0f);
+  estimator_.addObject("twin", file);
+  const std::vector<FrameObject> objects = {{"block", model_.get()},
+                                            {"twin", estimator_.model("twin").get()}};
+  FrameTracker tracker{TrackingParams{}};
+  for (int k = 0; k < 3; ++k) {
+    Frame frame = frameAt(moved(truth_, 2.0f * k, 1.0f * k));
+    frame.probabilities["twin"] = frame.probabilities["block"] * (0.6 / 0.9);
+    const FrameTracking t = tracker.track(frame, objects, estimator_.params(), k * kFramePeriod);
+    ASSERT_EQ(t.objects.size(), 2u);
+    EXPECT_EQ(t.objects[0].states.at(0), k == 0 ? TrackState::kRedetected : TrackState::kTracked);
+    EXPECT_TRUE(t.objects[0].result.estimate.instances.at(0).accepted);
+    ASSERT_EQ(t.objects[1].states, std::vector<TrackState>{TrackState::kLost}) << k;
+    EXPECT_EQ(t.objects[1].result.estimate.instances.at(0).rejection, "lost: explained by block 0");
+    EXPECT_EQ(t.counts.lost, 1);
+  }
+}
+
 TEST_F(TrackerTest, AGapOrTimeGoingBackEndsTheTracks) {
   FrameTracker tracker{TrackingParams{}};
   track(tracker, frameAt(truth_), 10.0);
@@ -302,9 +324,13 @@ TEST_F(TrackerTest, ObjectsFollowedInParallelMatchThoseFollowedInTurn) {
   for (Frame& f : frames) {
     for (const FrameObject& o : objects) f.probabilities[o.name] = f.probabilities.at("block");
   }
+  // Four objects on one surface: the frame-level explanation would keep one and leave the others
+  // to detection; here all four are followed.
+  PipelineParams params = estimator_.params();
+  params.explanation.enabled = false;
   FrameTracker in_turn{TrackingParams{}}, in_parallel{TrackingParams{}};
-  const auto expected = posesOverFrames(in_turn, objects, estimator_.params(), frames, 1);
-  const auto actual = posesOverFrames(in_parallel, objects, estimator_.params(), frames, 2);
+  const auto expected = posesOverFrames(in_turn, objects, params, frames, 1);
+  const auto actual = posesOverFrames(in_parallel, objects, params, frames, 2);
   ASSERT_EQ(actual.size(), expected.size());
   for (size_t k = 0; k < expected.size(); ++k)
     EXPECT_TRUE(actual[k].isApprox(expected[k], 1e-6f)) << k;
@@ -428,9 +454,13 @@ TEST_F(TrackerTest, OneScheduledDetectionIsWantedAtATime) {
   TrackingParams params;
   params.redetect_every = 2;
   FrameTracker tracker(params);
-  Frame frame = frameAt(truth_);
-  frame.probabilities["copy"] = frame.probabilities["block"];
-  frame.probabilities["new"] = frame.probabilities["block"];
+  // Two blocks side by side, "copy" on the second: one surface would go to one of them (the
+  // frame-level explanation).
+  Eigen::Isometry3f beside = truth_;
+  beside.translation().x() += 0.1f;
+  Frame frame = blocksAt({{truth_, 0.9f}, {beside, 0.0f}});
+  frame.probabilities["copy"] = blocksAt({{truth_, 0.0f}, {beside, 0.9f}}).probabilities["block"];
+  frame.probabilities["new"] = frame.probabilities["copy"];
   const std::vector<FrameObject> both = {{"block", model_.get()}, {"copy", model_.get()}};
   tracker.track(frame, both, estimator_.params(), 0.0);  // both new tracks to be confirmed now
   std::vector<FrameObject> objects = both;
@@ -493,7 +523,7 @@ TEST_F(TrackerTest, AnUntrackedObjectReportsItsLastDetectionsRejectionInEveryFra
     EXPECT_FALSE(pose.accepted);
     EXPECT_GT(pose.confidence, 0.0f);
     EXPECT_LT(pose.confidence, params.confidence.min_confidence);
-    EXPECT_EQ(pose.rejection.rfind("not tracked: the last detection's best pose has confidence", 0),
+    EXPECT_EQ(pose.rejection.rfind("not tracked: the last detection's best pose: confidence", 0),
               0u)
         << pose.rejection;
     EXPECT_EQ(t.counts.lost, 0);

@@ -111,4 +111,12 @@ std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<Fr
                                         const PipelineParams& params,
                                         const ObjectEstimator& estimate);
 
+/// The frame-level explanation (explainPoses with PipelineParams::explanation) over every instance
+/// of `estimates[i]`, the estimate of `objects[i]` in `frame`: a pose whose confirmed surface other
+/// poses explain is rejected in place. estimateFrame calls it; a tracker calls it on the poses it
+/// publishes.
+void explainFrame(const Frame& frame, const CameraIntrinsics& camera,
+                  const std::vector<FrameObject>& objects,
+                  const std::vector<PoseEstimate*>& estimates, const PipelineParams& params);
+
 }  // namespace stocs

@@ -99,6 +99,11 @@ class FrameTracker {
   /// What each object reads (pointing into the arguments) and its tracker.
   Inputs inputs(const Frame& frame, const CameraIntrinsics& camera,
                 const std::vector<FrameObject>& objects, const PipelineParams& params);
+  /// The frame-level explanation (explainFrame) over the poses of `out`, the frame's objects in
+  /// the order of `objects`: a track whose pose other poses explain is lost.
+  void explain(const Frame& frame, const CameraIntrinsics& camera,
+               const std::vector<FrameObject>& objects, const PipelineParams& params,
+               FrameTracking& out);
   /// The tracks that took a pose of `detection`, by object name.
   std::map<std::string, std::vector<int>> merge(const FrameDetection& detection,
                                                 const std::vector<FrameObject>& objects,

@@ -91,6 +91,10 @@ class ObjectTracker {
   std::vector<int> merge(const PoseEstimate& detection, const PreparedModel& model,
                          const PipelineParams& params);
 
+  /// Marks track `index` lost after the frame (its pose, accepted alone, was rejected by the
+  /// frame-level explanation): it is no longer followed, and detection keeps trying.
+  void lose(size_t index);
+
   const std::vector<Track>& tracks() const { return tracks_; }
 
  private:

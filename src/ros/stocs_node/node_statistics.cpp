@@ -131,7 +131,7 @@ diagnostic_msgs::DiagnosticStatus NodeStatistics::status(const std::string& name
   add("service calls failed", service_failures_);
   add("time jumps back", time_jumps_);
   add("poses published", poses_published_);
-  add("poses rejected (low confidence)", poses_rejected_);
+  add("poses rejected", poses_rejected_);
   add("poses tracked", tracked_);
   add("poses redetected", redetected_);
   add("poses lost", lost_);
@@ -161,7 +161,7 @@ std::string NodeStatistics::summary() const {
   }
   return line + fmt::format(
                     "; {} service calls ({} failed); time went back {} times; {} poses published, "
-                    "{} rejected for a low confidence; tracking: {} tracked, {} redetected, {} "
+                    "{} rejected; tracking: {} tracked, {} redetected, {} "
                     "lost, {} full detections, {} resets",
                     service_calls_, service_failures_, time_jumps_, poses_published_,
                     poses_rejected_, tracked_, redetected_, lost_, detections_, track_resets_);
