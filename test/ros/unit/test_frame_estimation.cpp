@@ -192,6 +192,22 @@ TEST_F(FrameEstimation, GeometricInputFindsTheKnownPoseFromTheCloudAlone) {
   expectFoundNearTruth(detectJob(job, *setup("input: {probability: geometric}\n"), &segmenter));
 }
 
+TEST_F(FrameEstimation, GeometricInputNamesAnUnorganizedCloud) {
+  EstimationJob job = cloudJob();
+  job.frame.probabilities.clear();
+  job.frame.cloud =
+      boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(stocs::OrganizedCloud(100, 1), {}));
+  stocs::GeometricSegmenter segmenter;
+  try {
+    detectJob(job, *setup("input: {probability: geometric}\n"), &segmenter);
+    ADD_FAILURE() << "an unorganized cloud was estimated";
+  } catch (const stocs::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cloud: cloud is not organized (height 1, width 100)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(FrameEstimation, GeometricInputNamesADepthWithoutMeasurements) {
   const auto s = setup("input: {source: depth, probability: geometric}\n");
   sensor_msgs::CameraInfo info;
