@@ -46,6 +46,20 @@ std::vector<fs::path> modelFiles(const fs::path& source) {
   return files;
 }
 
+/// Throws InputError naming the first model file of `files` without faces: scenes are rendered
+/// from triangles, and a point model would leave its images without it and its masks empty.
+void checkModelsAreMeshes(const std::vector<fs::path>& files) {
+  for (const fs::path& file : files) {
+    if (file.extension() != ".ply") continue;
+    if (!loadMesh(file.string(), 0.001f).isMesh()) {
+      throw InputError(fmt::format(
+          "synth: model {} has no faces (a point model): scenes are rendered from triangles, so "
+          "it would be in no image and no mask; give its mesh",
+          file.string()));
+    }
+  }
+}
+
 /// The dataset's models: the given files copied, or the catalogue objects written out when there
 /// are none.
 void writeModelsFolder(const fs::path& models, const std::vector<fs::path>& files,
@@ -274,6 +288,7 @@ void writeSyntheticDataset(const fs::path& root, const SyntheticDatasetParams& p
       models_dir.empty() ? std::vector<fs::path>{} : modelFiles(models_dir);
   const std::vector<CatalogueObject> catalogue =
       models_dir.empty() ? catalogueSelection(params.catalogue) : std::vector<CatalogueObject>{};
+  checkModelsAreMeshes(model_files);
   checkBinObject(params.bin.object, catalogue, model_files);
   if (!models_dir.empty()) readLookalikes(models_dir / "lookalikes.json");  // malformed: say so now
   createDatasetRoot(root);

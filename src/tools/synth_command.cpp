@@ -42,8 +42,8 @@ Command registerSynth(CLI::App& app) {
       "simulated probability maps");
   cmd->add_option("--out", o->out, "Output folder (must not exist or be empty)")->required();
   cmd->add_option("--models", o->models,
-                  "BOP models folder to copy (obj_*.ply in mm, models_info.json); default: the "
-                  "project's own meshes");
+                  "BOP models folder to copy (obj_*.ply meshes with faces in mm, "
+                  "models_info.json; a point model is refused); default: the project's own meshes");
   addSchemaOptions(*cmd, SyntheticDatasetParams::schema(), p);
   // A bare `--sequence` switches sequences on: a flag rather than the schema's `--sequence BOOL`.
   CLI::Option* sequence = cmd->get_option("--sequence");

@@ -193,6 +193,10 @@ TEST(BadConfig, SegmentationNodeWarnsThatThePackagesNetworkKnowsOnlySixMeshes) {
     ASSERT_NE(output.find("waiting for subscribers"), std::string::npos) << output;
     EXPECT_EQ(output.find(warning) != std::string::npos, model == SEGMENTER_MODEL) << model << ":\n"
                                                                                    << output;
+    // ... and it names what needs no network.
+    EXPECT_EQ(output.find("give the StoCS node input.probability: geometric") != std::string::npos,
+              model == SEGMENTER_MODEL)
+        << output;
   }
 }
 

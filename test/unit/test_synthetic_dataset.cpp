@@ -10,6 +10,7 @@
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
 #include "stocs/io/mesh_io.h"
+#include "stocs/io/ply_writer.h"
 #include "stocs/sim/bop_writer.h"
 #include "stocs/sim/depth_renderer.h"
 #include "stocs/sim/synthetic_dataset.h"
@@ -178,6 +179,18 @@ TEST(SyntheticDataset, ModelsCanBeCopiedFromAFolder) {
   const std::vector<BopGtInstance> gt = BopDataset(copied).sceneGroundTruth(0).at(0);
   ASSERT_EQ(gt.size(), 4u);
   for (const BopGtInstance& g : gt) EXPECT_TRUE(g.obj_id == 1 || g.obj_id == 4);
+}
+
+TEST(SyntheticDataset, APointModelIsRefusedByNameBeforeAnythingIsWritten) {
+  const fs::path from = test::scratchDir("point_models");
+  writeModels(from, {objectCatalogue()[0], objectCatalogue()[3]});
+  MeshData points = loadMesh((from / "obj_000004.ply").string(), 0.001f);
+  points.triangles.clear();
+  writePly(from / "obj_000004.ply", points, 1000.0f);  // back to mm, vertices only
+  const fs::path out = test::scratchDir("point_models_out") / "scenes";
+  test::expectInputError([&] { writeSyntheticDataset(out, smallDataset(3), from); },
+                         "obj_000004.ply has no faces (a point model)");
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(SyntheticDataset, TargetsListEveryObjectAndAbsentOnesWithTheirMaps) {

@@ -11,6 +11,7 @@
 #include "stocs/estimation/pipeline.h"
 #include "stocs/io/segmentation_inputs.h"
 #include "stocs/model/object_symmetries.h"
+#include "stocs/segmentation/geometric_segmentation.h"
 #include "stocs/tracking/tracking_params.h"
 #include "stocs_ros/common/stamp_synchronizer.h"
 
@@ -27,7 +28,9 @@ struct ObjectConfig {
 };
 
 enum class DepthSource { kCloud, kDepthImage };
-enum class ProbabilitySource { kPerObject, kMultichannel, kLabels, kMasks, kBoxes };
+/// kGeometric: no segmentation input; each object's map comes from the depth alone
+/// (stocs::GeometricSegmenter, input.geometric).
+enum class ProbabilitySource { kPerObject, kMultichannel, kLabels, kMasks, kBoxes, kGeometric };
 
 struct InputConfig {
   DepthSource depth = DepthSource::kCloud;
@@ -45,6 +48,8 @@ struct InputConfig {
   bool label_confidence = false;  ///< kLabels: also wait for ~label_confidence
   /// How labels, masks and boxes become probability maps.
   stocs::SegmentationInputParams segmentation;
+  /// kGeometric: how the depth is segmented into object candidates.
+  stocs::GeometricSegmentationParams geometric;
   SyncParams sync;
 
   /// Whether the probability maps come from labels, masks or boxes.

@@ -1,6 +1,7 @@
 #pragma once
 // One estimation on one input frame: converts the frame's messages (see cloud_conversion.h and
-// image_conversion.h) into a stocs::Frame and runs the core's frame loop (stocs::estimateFrame) on
+// image_conversion.h) into a stocs::Frame, or segments its depth (input.probability geometric),
+// and runs the core's frame loop (stocs::estimateFrame) on
 // the requested objects.
 
 #include <sensor_msgs/CameraInfo.h>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "stocs/estimation/frame.h"
+#include "stocs/segmentation/geometric_segmentation.h"
 #include "stocs/tracking/stream_tracker.h"
 #include "stocs_ros/common/segmentation_conversion.h"
 #include "stocs_ros/stocs_node/estimation_setup.h"
@@ -61,14 +63,22 @@ struct FrameResult {
 /// field), intrinsics, probability maps by object name, boundary; errors as detectJob's.
 stocs::Frame convertFrame(const EstimationJob& job, const NodeConfig& config);
 
+/// convertFrame, and with input.probability geometric each requested object's map made from the
+/// depth by `geometric` (which must then be given): stocs::setGeometricProbabilities. Its errors
+/// are named "geometric segmentation: ...".
+stocs::Frame estimationFrame(const EstimationJob& job, const EstimationSetup& setup,
+                             stocs::GeometricSegmenter* geometric);
+
 /// Throws stocs::InputError naming the input at fault (cloud, an object's probability image, the
-/// boundary map, the colour image) for bad encodings, sizes or parameters.
-FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup);
+/// boundary map, the colour image, the geometric segmentation) for bad encodings, sizes or
+/// parameters. `geometric`: as estimationFrame's.
+FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup,
+                      stocs::GeometricSegmenter* geometric = nullptr);
 
 /// The job's objects tracked by `tracker` (config.tracking) as the frame at the header's stamp:
 /// followed in the frame, detected in the background (stocs::StreamTracker, which holds `setup`
-/// while it detects); errors as detectJob's.
+/// while it detects); errors and `geometric` as detectJob's.
 FrameResult trackJob(const EstimationJob& job, const std::shared_ptr<const EstimationSetup>& setup,
-                     stocs::StreamTracker& tracker);
+                     stocs::StreamTracker& tracker, stocs::GeometricSegmenter* geometric = nullptr);
 
 }  // namespace stocs_ros

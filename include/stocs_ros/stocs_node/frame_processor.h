@@ -3,8 +3,9 @@
 // frames of a stream with tracking.enabled, tracks them (trackJob with a stocs::StreamTracker that
 // starts anew with new models, and takes new tracking settings without ending its tracks; the core
 // chooses a symmetric object's equivalent pose); expresses the result in the output frame
-// (OutputFrame); publishes it (OutputPublisher) and counts it. Runs on the worker's thread
-// only, one job at a time, so it holds no lock.
+// (OutputFrame); publishes it (OutputPublisher) and counts it. With input.probability geometric it
+// holds the node's GeometricSegmenter, which frames and ~estimate calls share. Runs on the worker's
+// thread only, one job at a time, so it holds no lock.
 
 #include <ros/ros.h>
 
@@ -40,6 +41,9 @@ class FrameProcessor {
 
  private:
   FrameResult track(const QueuedJob& queued);
+  /// With input.probability geometric, the node's one segmenter (made anew when its parameters
+  /// change: it keeps PCL's buffers between frames); else null.
+  stocs::GeometricSegmenter* segmenter(const NodeConfig& config);
 
   NodeStatistics& statistics_;
   OutputFrame output_frame_;
@@ -48,6 +52,7 @@ class FrameProcessor {
   /// detections run on a thread of their own.
   std::optional<stocs::StreamTracker> stream_tracker_;
   std::vector<std::shared_ptr<const stocs::PreparedModel>> tracked_models_;
+  std::optional<stocs::GeometricSegmenter> geometric_;
 };
 
 }  // namespace stocs_ros

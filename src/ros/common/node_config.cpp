@@ -290,9 +290,11 @@ const stocs::ParamSet<InputConfig>& InputConfig::schema() {
                    {"multichannel", ProbabilitySource::kMultichannel},
                    {"labels", ProbabilitySource::kLabels},
                    {"masks", ProbabilitySource::kMasks},
-                   {"boxes", ProbabilitySource::kBoxes}},
+                   {"boxes", ProbabilitySource::kBoxes},
+                   {"geometric", ProbabilitySource::kGeometric}},
                   "per_object: ~probability/<name>; multichannel: one ~probability; labels: "
-                  "~labels; masks: ~masks; boxes: ~boxes")
+                  "~labels; masks: ~masks; boxes: ~boxes; geometric: none, maps from the depth "
+                  "alone (input.geometric)")
           .add(&InputConfig::channels, "channels", "", std::nullopt,
                "multichannel: the object name of each channel in order, \"-\" to ignore one")
           .add(&InputConfig::uint16_scale, "uint16_scale", "", stocs::ParamRange::aboveUpTo(0, 1e9),
@@ -309,6 +311,7 @@ const stocs::ParamSet<InputConfig>& InputConfig::schema() {
                "labels: also wait for ~label_confidence (32FC1, mono16, mono8)")
           .nest(&InputConfig::segmentation, "segmentation",
                 stocs::SegmentationInputParams::schema())
+          .nest(&InputConfig::geometric, "geometric", stocs::GeometricSegmentationParams::schema())
           .nest(&InputConfig::sync, "sync", SyncParams::schema());
   return schema;
 }
@@ -393,6 +396,11 @@ NodeConfig loadNodeConfig(const fs::path& file, const fs::path& dataset) {
   schema.read(NodeConfig::schema(), c);
   schema.rejectUnknownKeys();
   checkInputLists(c);
+  try {
+    c.input.geometric.validate();  // what the schema's ranges cannot say: min below max
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: input.geometric: {}", file.string(), e.what()));
+  }
   if (c.model_cache_setting.empty()) {
     c.model_cache = stocs::ModelCache::defaultDirectory();
   } else if (c.model_cache_setting != "none") {

@@ -146,7 +146,7 @@ ScenePublisher::ScenePublisher(ros::NodeHandle pnh)
     advertiseSegmentation();
   } else if (config_.input.probability == ProbabilitySource::kMultichannel) {
     multichannel_ = pnh_.advertise<sensor_msgs::Image>("probability", 2);
-  } else {
+  } else if (config_.input.probability == ProbabilitySource::kPerObject) {
     // In a child handle, so that remapping ~probability moves every per-object topic.
     ros::NodeHandle probability_nh(pnh_, "probability");
     for (const ObjectConfig& o : config_.objects) {
@@ -205,9 +205,11 @@ void ScenePublisher::loadNext() {
 
 std::shared_ptr<const BopFrame> ScenePublisher::load(size_t index) {
   const FrameRef& ref = frames_[index];
-  auto frame = std::make_shared<const BopFrame>(loadBopFrame(dataset_, ref.scene, ref.image,
-                                                             cameras_.at(ref.scene).at(ref.image),
-                                                             object_ids_, *probability_source_));
+  // A node that segments the depth itself (input.probability geometric) gets no maps.
+  const bool maps = config_.input.probability != ProbabilitySource::kGeometric;
+  auto frame = std::make_shared<const BopFrame>(
+      loadBopFrame(dataset_, ref.scene, ref.image, cameras_.at(ref.scene).at(ref.image),
+                   maps ? object_ids_ : std::vector<int>{}, *probability_source_));
   if (cache_frames_) cache_[index] = frame;
   return frame;
 }

@@ -109,8 +109,10 @@ SegmentationNode::SegmentationNode(ros::NodeHandle pnh)
     ROS_WARN(
         "segmentation: %s is the package's own network, trained on generated scenes of the "
         "project's %zu meshes (%s) only: it knows nothing else, and on real images it marks "
-        "unrelated objects as these. For your objects, train a network of your own and set ~model "
-        "and ~channels (see models/README.md and docs/ros.md, \"Segmentation node\")",
+        "unrelated objects as these. For your objects, give the StoCS node input.probability: "
+        "geometric (maps from the depth alone, no network; README \"Your own objects\"), or set "
+        "~model and ~channels to a network of your own (models/README.md); "
+        "scripts/train_segmenter.sh trains only this one",
         network_.params().model.c_str(), objects_.size(), names.c_str());
   }
 }

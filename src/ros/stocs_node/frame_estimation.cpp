@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <opencv2/core.hpp>
+#include <stdexcept>
 
 #include "stocs/util/error.h"
 #include "stocs_ros/common/cloud_conversion.h"
@@ -106,8 +107,19 @@ std::vector<stocs::FrameObject> jobObjects(const EstimationJob& job, const Estim
 
 }  // namespace
 
-FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup) {
-  const stocs::Frame frame = convertFrame(job, setup.config);
+stocs::Frame estimationFrame(const EstimationJob& job, const EstimationSetup& setup,
+                             stocs::GeometricSegmenter* geometric) {
+  stocs::Frame frame = convertFrame(job, setup.config);
+  if (setup.config.input.probability != ProbabilitySource::kGeometric) return frame;
+  if (!geometric) throw std::logic_error("input.probability geometric needs a segmenter");
+  naming("geometric segmentation",
+         [&] { stocs::setGeometricProbabilities(frame, jobObjects(job, setup), *geometric); });
+  return frame;
+}
+
+FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup,
+                      stocs::GeometricSegmenter* geometric) {
+  const stocs::Frame frame = estimationFrame(job, setup, geometric);
   FrameResult result;
   result.header = job.frame.header();
   std::vector<stocs::ObjectResult> estimates =
@@ -119,8 +131,8 @@ FrameResult detectJob(const EstimationJob& job, const EstimationSetup& setup) {
 }
 
 FrameResult trackJob(const EstimationJob& job, const std::shared_ptr<const EstimationSetup>& setup,
-                     stocs::StreamTracker& tracker) {
-  auto frame = std::make_shared<const stocs::Frame>(convertFrame(job, setup->config));
+                     stocs::StreamTracker& tracker, stocs::GeometricSegmenter* geometric) {
+  auto frame = std::make_shared<const stocs::Frame>(estimationFrame(job, *setup, geometric));
   FrameResult result;
   result.header = job.frame.header();
   std::optional<double> previous_input;

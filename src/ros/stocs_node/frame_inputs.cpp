@@ -29,6 +29,9 @@ FrameInputs::FrameInputs(ros::NodeHandle pnh, const NodeConfig& config)
       for (size_t i = 0; i < config.objects.size(); ++i) {
         add(config.objects[i].name, Kind::kProbability, i);
       }
+      break;
+    case ProbabilitySource::kGeometric:
+      break;  // the maps come from the depth alone
   }
   if (config.input.boundary) add("boundary", Kind::kBoundary);
   if (config.input.colour) add("rgb", Kind::kColour);

@@ -77,7 +77,7 @@ SegmentationMessages requestSegmentation(Estimate::Request& request, const NodeC
 
 /// The frame of an ~estimate request with explicit inputs: a cloud, or a depth image with its
 /// camera_info, and one probability image per requested object (`objects`, indices into the
-/// configured objects), or the segmentation input.probability names.
+/// configured objects), or the segmentation input.probability names (none for geometric).
 FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>& objects,
                            const NodeConfig& config) {
   if (given(request.cloud) && given(request.depth)) {
@@ -89,6 +89,12 @@ FrameMessages requestFrame(Estimate::Request& request, const std::vector<size_t>
   FrameMessages frame;
   if (config.input.segmentationForm()) {
     frame.segmentation = requestSegmentation(request, config);
+  } else if (config.input.probability == ProbabilitySource::kGeometric) {
+    if (!request.probabilities.empty()) {
+      throw InputError(
+          "probabilities were given, but input.probability is geometric: the maps come from the "
+          "depth alone; give none");
+    }
   } else if (request.probabilities.size() != objects.size()) {
     throw InputError(
         fmt::format("{} probability images for {} objects; give one per object, in "

@@ -42,9 +42,12 @@ StocsNode::StocsNode(ros::NodeHandle pnh)
       pnh_.createWallTimer(ros::WallDuration(kStatisticsPeriod),
                            [this](const ros::WallTimerEvent&) { publishStatistics(); });
   const NodeConfig& config = setups_.current()->config;
-  ROS_INFO("stocs: %zu objects (%s) from %s; waiting for %zu synchronized inputs",
+  ROS_INFO("stocs: %zu objects (%s) from %s; waiting for %zu synchronized inputs%s",
            config.objects.size(), config.objectNames().c_str(), setups_.file().c_str(),
-           inputs_.topics().size());
+           inputs_.topics().size(),
+           config.input.probability == ProbabilitySource::kGeometric
+               ? " (input.probability geometric: each object's map from the depth alone)"
+               : "");
 }
 
 StocsNode::~StocsNode() {

@@ -185,6 +185,49 @@ TEST_F(FrameEstimation, LabelsMasksAndBoxesGiveTheKnownPose) {
   expectFoundNearTruth(detectJob(job, *setup("input: {probability: boxes}\n")));
 }
 
+TEST_F(FrameEstimation, GeometricInputFindsTheKnownPoseFromTheCloudAlone) {
+  EstimationJob job = cloudJob();
+  job.frame.probabilities.clear();
+  stocs::GeometricSegmenter segmenter;
+  expectFoundNearTruth(detectJob(job, *setup("input: {probability: geometric}\n"), &segmenter));
+}
+
+TEST_F(FrameEstimation, GeometricInputNamesAnUnorganizedCloud) {
+  EstimationJob job = cloudJob();
+  job.frame.probabilities.clear();
+  job.frame.cloud =
+      boost::make_shared<sensor_msgs::PointCloud2>(cloudToMsg(stocs::OrganizedCloud(100, 1), {}));
+  stocs::GeometricSegmenter segmenter;
+  try {
+    detectJob(job, *setup("input: {probability: geometric}\n"), &segmenter);
+    ADD_FAILURE() << "an unorganized cloud was estimated";
+  } catch (const stocs::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cloud: cloud is not organized (height 1, width 100)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST_F(FrameEstimation, GeometricInputNamesADepthWithoutMeasurements) {
+  const auto s = setup("input: {source: depth, probability: geometric}\n");
+  sensor_msgs::CameraInfo info;
+  info.width = frame_->camera.width;
+  info.height = frame_->camera.height;
+  info.K = {
+      frame_->camera.fx, 0, frame_->camera.cx, 0, frame_->camera.fy, frame_->camera.cy, 0, 0, 1};
+  EstimationJob job;
+  job.frame.depth = image("32FC1", cv::Mat(frame_->depth.size(), CV_32FC1, cv::Scalar(0)));
+  job.frame.camera_info = boost::make_shared<sensor_msgs::CameraInfo>(info);
+  job.objects = {0};
+  stocs::GeometricSegmenter segmenter;
+  try {
+    detectJob(job, *s, &segmenter);
+    ADD_FAILURE() << "a depth image without measurements was estimated";
+  } catch (const stocs::InputError& e) {
+    EXPECT_STREQ(e.what(), "geometric segmentation: depth image has no valid measurement");
+  }
+}
+
 TEST_F(FrameEstimation, BadSegmentationMessagesAreNamed) {
   EstimationJob job = cloudJob();
   job.frame.probabilities.clear();

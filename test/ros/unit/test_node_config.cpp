@@ -204,6 +204,17 @@ TEST(NodeConfig, SymmetriesComeFromTheModelsInfoBesideABopModel) {
   }
 }
 
+TEST(NodeConfig, GeometricInputReadsItsSegmentationKeys) {
+  const NodeConfig c = loadNodeConfig(writeConfig(
+      std::string(kBox) +
+      "input: {probability: geometric, geometric: {stride: 1, plane_min_area: 0.1}}\n"));
+  EXPECT_EQ(c.input.probability, ProbabilitySource::kGeometric);
+  EXPECT_EQ(c.input.geometric.stride, 1);
+  EXPECT_FLOAT_EQ(c.input.geometric.plane_min_area, 0.1f);
+  EXPECT_FLOAT_EQ(c.input.geometric.crease_angle_deg,
+                  stocs::GeometricSegmentationParams().crease_angle_deg);
+}
+
 TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
   const std::string box = kBox;
   const std::vector<std::pair<std::string, std::string>> cases = {
@@ -256,6 +267,9 @@ TEST(NodeConfig, MistakesNameTheFileTheKeyAndTheProblem) {
        "boxes"},
       {box + "input: {segmentation: {box_core: 1}}\n",
        "input.segmentation.box_core: 1 is outside [0, 1)"},
+      {box + "input: {geometric: {stride: 0}}\n", "input.geometric.stride: 0 px is outside [1, 8]"},
+      {box + "input: {geometric: {min_extent_share: 2, max_extent_share: 1.5}}\n",
+       "node.yaml: input.geometric: min_extent_share 2 must be below max_extent_share 1.5"},
       {box + "output: {tf: maybe}\n", "output.tf: expected true or false, got 'maybe'"},
       {"objects:\n  - model: box.ply\n", "objects[0].name '' must start with a letter"},
       {"objects:\n  - name: my cat\n    model: cat.ply\n", "objects[0].name 'my cat'"},
