@@ -13,15 +13,32 @@ namespace {
 
 /// The measured pixels one accepted pose confirms, and its object's map there.
 struct Claim {
-  std::vector<int> pixels;  ///< sorted, unique indices into the image
+  std::vector<int> pixels;  ///< unique indices into the image
   std::vector<float> map;   ///< the pose's object's probability at each pixel
   float confidence = 0;
   bool alive = true;  ///< still accepted
 };
 
+/// Per pixel of the image, the two living claims with the highest map there (-1: none), ties
+/// included: enough to tell whether another claim explains a pixel at least as well as a given
+/// one. Also the last claim that marked each pixel, so that a claim lists a pixel once. Allocated
+/// once per frame; only the claims' pixels are ever reset.
+struct PixelTable {
+  explicit PixelTable(int pixel_count)
+      : first(pixel_count, -1),
+        second(pixel_count, -1),
+        first_map(pixel_count, 0),
+        second_map(pixel_count, 0),
+        marked_by(pixel_count, -1) {}
+  std::vector<int> first, second;
+  std::vector<float> first_map, second_map;
+  std::vector<int> marked_by;
+};
+
 /// The pixels within the sample spacing of the pose's confirmed samples: poses on one surface
 /// then claim the same pixels although their samples project onto different ones.
-std::vector<int> confirmedPixels(const FramePose& p, const FreeSpaceCheck& visibility) {
+std::vector<int> confirmedPixels(const FramePose& p, int id, const FreeSpaceCheck& visibility,
+                                 PixelTable& table) {
   const CameraIntrinsics& camera = visibility.camera();
   std::vector<int> pixels;
   const ObjectModel& model = *p.model;
@@ -31,36 +48,33 @@ std::vector<int> confirmedPixels(const FramePose& p, const FreeSpaceCheck& visib
     const int h = static_cast<int>(std::lround(camera.fx * model.sampling_radius / z));
     for (int y = std::max(0, v - h); y <= std::min(camera.height - 1, v + h); ++y) {
       for (int x = std::max(0, u - h); x <= std::min(camera.width - 1, u + h); ++x) {
-        pixels.push_back(y * camera.width + x);
+        const int pixel = y * camera.width + x;
+        if (table.marked_by[pixel] == id) continue;
+        table.marked_by[pixel] = id;
+        pixels.push_back(pixel);
       }
     }
   });
-  std::sort(pixels.begin(), pixels.end());
-  pixels.erase(std::unique(pixels.begin(), pixels.end()), pixels.end());
   return pixels;
 }
 
-Claim claimOf(const FramePose& p, const FreeSpaceCheck& visibility) {
+Claim claimOf(const FramePose& p, int id, const FreeSpaceCheck& visibility, PixelTable& table) {
   Claim c;
-  c.pixels = confirmedPixels(p, visibility);
+  c.alive = p.pose->accepted;
+  if (!c.alive) return c;  // a rejected pose explains nothing
+  c.pixels = confirmedPixels(p, id, visibility, table);
   c.map.reserve(c.pixels.size());
   for (int k : c.pixels)
     c.map.push_back(p.probability->at<float>(k / p.probability->cols, k % p.probability->cols));
   c.confidence = p.pose->confidence;
-  c.alive = p.pose->accepted;
   return c;
 }
 
-/// Per pixel, the two living claims with the highest map there (-1: none), ties included: enough
-/// to tell whether another claim explains a pixel at least as well as a given one.
-struct TopTwo {
-  std::vector<int> first, second;
-  std::vector<float> first_map, second_map;
-};
-
-TopTwo topTwo(const std::vector<Claim>& claims, int pixel_count) {
-  TopTwo t{std::vector<int>(pixel_count, -1), std::vector<int>(pixel_count, -1),
-           std::vector<float>(pixel_count, 0), std::vector<float>(pixel_count, 0)};
+/// Fills `t`'s two best claims of every pixel some claim holds.
+void rankClaims(const std::vector<Claim>& claims, PixelTable& t) {
+  for (const Claim& c : claims) {
+    for (int p : c.pixels) t.first[p] = t.second[p] = -1;
+  }
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
     for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
@@ -77,7 +91,6 @@ TopTwo topTwo(const std::vector<Claim>& claims, int pixel_count) {
       }
     }
   }
-  return t;
 }
 
 /// The share of a claim's pixels that another living claim confirms with at least as high a map
@@ -87,7 +100,7 @@ struct Explained {
   int by = -1;
 };
 
-Explained explainedShare(const std::vector<Claim>& claims, int i, const TopTwo& t) {
+Explained explainedShare(const std::vector<Claim>& claims, int i, const PixelTable& t) {
   std::vector<int> by(claims.size(), 0);
   int explained = 0;
   for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
@@ -108,7 +121,7 @@ Explained explainedShare(const std::vector<Claim>& claims, int i, const TopTwo& 
 /// The living claim most explained by others above the limit, the lower confidence on a tie
 /// (first: -1 if none), and the claim explaining most of it. Most redundant first: a pose slid
 /// across two boxes goes before the two right poses, each of which it covers by half.
-std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const TopTwo& t,
+std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const PixelTable& t,
                                   float max_share) {
   std::pair<int, int> worst{-1, -1};
   float worst_share = 0;
@@ -149,13 +162,15 @@ void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibilit
                   const FrameExplanationParams& params) {
   params.validate();
   if (!params.enabled) return;
+  PixelTable table(visibility.camera().width * visibility.camera().height);
   std::vector<Claim> claims;
   claims.reserve(poses.size());
-  for (const FramePose& p : poses) claims.push_back(claimOf(p, visibility));
-  const int pixel_count = visibility.camera().width * visibility.camera().height;
+  for (const FramePose& p : poses) {
+    claims.push_back(claimOf(p, static_cast<int>(claims.size()), visibility, table));
+  }
   for (;;) {
-    const auto [worst, by] =
-        mostExplained(claims, topTwo(claims, pixel_count), params.max_explained_share);
+    rankClaims(claims, table);
+    const auto [worst, by] = mostExplained(claims, table, params.max_explained_share);
     if (worst < 0) return;
     claims[worst].alive = false;
     InstancePose& rejected = *poses[worst].pose;
