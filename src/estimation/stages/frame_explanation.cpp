@@ -13,61 +13,83 @@ namespace {
 
 /// The measured pixels one accepted pose confirms, and its object's map there.
 struct Claim {
-  std::vector<int> pixels;  ///< unique indices into the image
+  std::vector<int> pixels;  ///< unique indices into the PixelTable's area
   std::vector<float> map;   ///< the pose's object's probability at each pixel
   float confidence = 0;
   bool alive = true;  ///< still accepted
 };
 
-/// Per pixel of the image, the two living claims with the highest map there (-1: none), ties
-/// included: enough to tell whether another claim explains a pixel at least as well as a given
-/// one. Also the last claim that marked each pixel, so that a claim lists a pixel once. Allocated
-/// once per frame; only the claims' pixels are ever reset.
+/// A pose's confirmed samples as squares of pixels (centre u, v and half side): within the sample
+/// spacing, so that poses on one surface claim the same pixels although their samples project
+/// onto different ones. `box` bounds them in the image.
+struct Splats {
+  std::vector<cv::Vec3i> squares;
+  cv::Rect box;
+};
+
+Splats splatsOf(const FramePose& p, const FreeSpaceCheck& visibility) {
+  const CameraIntrinsics& camera = visibility.camera();
+  const ObjectModel& model = *p.model;
+  Splats out;
+  visibility.visit(model, p.pose->pose, [&](size_t i, int u, int v, SampleView view) {
+    if (view != SampleView::kConfirmed) return;
+    const float z = (p.pose->pose * model.points[i]).z();
+    const int h = static_cast<int>(std::lround(camera.fx * model.sampling_radius / z));
+    out.squares.emplace_back(u, v, h);
+    out.box |= cv::Rect(u - h, v - h, 2 * h + 1, 2 * h + 1);
+  });
+  out.box &= cv::Rect(0, 0, camera.width, camera.height);
+  return out;
+}
+
+/// Per pixel of `area` (the image part where claims overlap), the two living claims with the
+/// highest map there (-1: none), ties included: enough to tell whether another claim explains a
+/// pixel at least as well as a given one. Also the last claim that marked each pixel, so that a
+/// claim lists a pixel once.
 struct PixelTable {
-  explicit PixelTable(int pixel_count)
-      : first(pixel_count, -1),
-        second(pixel_count, -1),
-        first_map(pixel_count, 0),
-        second_map(pixel_count, 0),
-        marked_by(pixel_count, -1) {}
+  explicit PixelTable(const cv::Rect& area)
+      : area(area),
+        first(area.area(), -1),
+        second(area.area(), -1),
+        first_map(area.area(), 0),
+        second_map(area.area(), 0),
+        marked_by(area.area(), -1) {}
+  cv::Rect area;
   std::vector<int> first, second;
   std::vector<float> first_map, second_map;
   std::vector<int> marked_by;
 };
 
-/// The pixels within the sample spacing of the pose's confirmed samples: poses on one surface
-/// then claim the same pixels although their samples project onto different ones.
-std::vector<int> confirmedPixels(const FramePose& p, int id, const FreeSpaceCheck& visibility,
-                                 PixelTable& table) {
-  const CameraIntrinsics& camera = visibility.camera();
-  std::vector<int> pixels;
-  const ObjectModel& model = *p.model;
-  visibility.visit(model, p.pose->pose, [&](size_t i, int u, int v, SampleView view) {
-    if (view != SampleView::kConfirmed) return;
-    const float z = (p.pose->pose * model.points[i]).z();
-    const int h = static_cast<int>(std::lround(camera.fx * model.sampling_radius / z));
-    for (int y = std::max(0, v - h); y <= std::min(camera.height - 1, v + h); ++y) {
-      for (int x = std::max(0, u - h); x <= std::min(camera.width - 1, u + h); ++x) {
-        const int pixel = y * camera.width + x;
+/// Claim `id`: the pixels of its splats (all within the table's area) and its map there.
+Claim claimOf(const FramePose& p, const Splats& splats, int id, PixelTable& table) {
+  Claim c;
+  c.confidence = p.pose->confidence;
+  const cv::Rect& area = table.area;
+  for (const cv::Vec3i& s : splats.squares) {
+    const int u = s[0], v = s[1], h = s[2];
+    for (int y = std::max(area.y, v - h); y <= std::min(area.br().y - 1, v + h); ++y) {
+      for (int x = std::max(area.x, u - h); x <= std::min(area.br().x - 1, u + h); ++x) {
+        const int pixel = (y - area.y) * area.width + (x - area.x);
         if (table.marked_by[pixel] == id) continue;
         table.marked_by[pixel] = id;
-        pixels.push_back(pixel);
+        c.pixels.push_back(pixel);
+        c.map.push_back(p.probability->at<float>(y, x));
       }
     }
-  });
-  return pixels;
+  }
+  return c;
 }
 
-Claim claimOf(const FramePose& p, int id, const FreeSpaceCheck& visibility, PixelTable& table) {
-  Claim c;
-  c.alive = p.pose->accepted;
-  if (!c.alive) return c;  // a rejected pose explains nothing
-  c.pixels = confirmedPixels(p, id, visibility, table);
-  c.map.reserve(c.pixels.size());
-  for (int k : c.pixels)
-    c.map.push_back(p.probability->at<float>(k / p.probability->cols, k % p.probability->cols));
-  c.confidence = p.pose->confidence;
-  return c;
+/// Which poses' splats overlap another's (by their boxes): only those can explain or be explained.
+std::vector<char> overlapping(const std::vector<Splats>& splats) {
+  std::vector<char> out(splats.size(), 0);
+  for (size_t i = 0; i < splats.size(); ++i) {
+    for (size_t j = i + 1; j < splats.size(); ++j) {
+      if ((splats[i].box & splats[j].box).empty()) continue;
+      out[i] = out[j] = 1;
+    }
+  }
+  return out;
 }
 
 /// Fills `t`'s two best claims of every pixel some claim holds.
@@ -162,11 +184,23 @@ void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibilit
                   const FrameExplanationParams& params) {
   params.validate();
   if (!params.enabled) return;
-  PixelTable table(visibility.camera().width * visibility.camera().height);
-  std::vector<Claim> claims;
-  claims.reserve(poses.size());
+  // Only poses whose confirmed pixels may overlap compete, in a table of the area they cover.
+  std::vector<Splats> splats;
   for (const FramePose& p : poses) {
-    claims.push_back(claimOf(p, static_cast<int>(claims.size()), visibility, table));
+    splats.push_back(p.pose->accepted ? splatsOf(p, visibility) : Splats{});
+  }
+  const std::vector<char> overlaps = overlapping(splats);
+  cv::Rect area;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (overlaps[i]) area |= splats[i].box;
+  }
+  if (area.empty()) return;
+  PixelTable table(area);
+  std::vector<Claim> claims;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    const int id = static_cast<int>(i);
+    claims.push_back(overlaps[i] ? claimOf(poses[i], splats[i], id, table) : Claim{});
+    claims.back().alive = poses[i].pose->accepted;
   }
   for (;;) {
     rankClaims(claims, table);
