@@ -125,5 +125,63 @@ TEST_F(EstimatorTest, TheFrameLoopRunsAnyMethodAndRequiresEveryRequestedMap) {
   }
 }
 
+TEST_F(EstimatorTest, AnObjectWhosePoseAnotherExplainsIsSearchedForAgainElsewhere) {
+  // The block at truth_ and its twin (the same shape) 15 cm to the side. The twin's map marks both,
+  // fainter than the block's own map marks the block; its estimator poses it on the block wherever
+  // its map allows that, else on the twin: on the block only the second search moves it.
+  const CameraIntrinsics camera = test::testCamera();
+  Eigen::Isometry3f twin = truth_;
+  twin.translation().x() += 0.15f;
+  cv::Mat labels;
+  const cv::Mat depth =
+      test::renderDepth({{asymmetricMesh(), truth_}, {asymmetricMesh(), twin}}, camera, &labels);
+  Frame frame = Frame::fromDepth(depth, camera, 1.0);
+  cv::Mat block_map(labels.size(), CV_32FC1, cv::Scalar(0));
+  block_map.setTo(0.9f, labels == 1);
+  frame.probabilities["block"] = block_map;
+  cv::Mat twin_map(labels.size(), CV_32FC1, cv::Scalar(0));
+  twin_map.setTo(0.6f, labels == 1);
+  twin_map.setTo(0.6f, labels == 2);
+  frame.probabilities["twin"] = twin_map;
+
+  Estimator estimator(PipelineParams{}, ModelCache(test::scratchDir("estimator_cache")));
+  estimator.addObject("block", model_file_);
+  const std::vector<FrameObject> objects = {{"block", estimator.model("block").get()},
+                                            {"twin", estimator.model("block").get()}};
+  auto marks = [&](const ObjectInput& in, const cv::Mat& label) {
+    return cv::countNonZero((*in.probability > 0) & label) > 0;
+  };
+  int calls = 0;
+  const ObjectEstimator placing = [&](const ObjectInput& in) {
+    PoseEstimate e;
+    const bool on_block = marks(in, labels == 1);
+    ++calls;
+    if (on_block || marks(in, labels == 2)) {
+      InstancePose& pose = e.instances.emplace_back();
+      pose.pose = on_block ? truth_ : twin;
+      pose.confidence = 0.9f;
+    }
+    e.setFound();
+    return e;
+  };
+  PipelineParams again;
+  again.explanation.search_again = true;
+  std::vector<ObjectResult> results = estimateFrame(frame, objects, again, placing);
+  ASSERT_EQ(results.size(), 2u);
+  EXPECT_TRUE(results[0].estimate.best().accepted);
+  const InstancePose& found = results[1].estimate.best();
+  EXPECT_TRUE(found.accepted) << found.rejection;
+  EXPECT_TRUE(found.pose.isApprox(twin));
+  EXPECT_EQ(calls, 3);  // the block, the twin, the twin on its map without the block
+
+  // Without the second search, or where it finds nothing, the twin keeps its explained pose.
+  results = estimateFrame(frame, objects, PipelineParams{}, placing);
+  EXPECT_EQ(results[1].estimate.best().rejection, "explained by block 0");
+  frame.probabilities["twin"].setTo(0.0f, labels == 2);
+  results = estimateFrame(frame, objects, again, placing);
+  EXPECT_TRUE(results[1].estimate.best().pose.isApprox(truth_));
+  EXPECT_EQ(results[1].estimate.best().rejection, "explained by block 0");
+}
+
 }  // namespace
 }  // namespace stocs

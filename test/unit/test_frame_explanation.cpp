@@ -3,7 +3,9 @@
 // objects (nothing lost).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "stocs/estimation/pose_estimate.h"
 #include "stocs/estimation/stages/frame_explanation.h"
@@ -44,8 +46,9 @@ class FrameExplanationTest : public ::testing::Test {
     m.setTo(level, labels_ == index + 1);
     return m;
   }
-  void explain(std::vector<FramePose>& poses, const FrameExplanationParams& params = {}) const {
-    explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), params);
+  std::vector<ExplainedPose> explain(std::vector<FramePose>& poses,
+                                     const FrameExplanationParams& params = {}) const {
+    return explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), params);
   }
 
   const CameraIntrinsics camera_ = test::testCamera();
@@ -63,7 +66,18 @@ TEST_F(FrameExplanationTest, AnAbsentLookAlikeOnThePresentBoxIsExplainedByIt) {
   InstancePose box = instance(pose, 0.90f), small = instance(pose, 0.95f);
   std::vector<FramePose> poses = {{"box", 0, &box_, &box_map, &box},
                                   {"small_box", 0, &small_box_, &small_map, &small}};
-  explain(poses);
+  const std::vector<ExplainedPose> explained = explain(poses);
+  ASSERT_EQ(explained.size(), 1u);
+  EXPECT_EQ(explained[0].pose, 1u);
+  EXPECT_EQ(explained[0].by, 0u);
+  // The surface the box explains is where the map marks it.
+  const cv::Mat area = confirmedArea(poses, {true, false}, FreeSpaceCheck(cloud_, camera_, {}));
+  EXPECT_GT(cv::countNonZero(area & (labels_ == 1)), 0.8 * cv::countNonZero(labels_ == 1));
+  // Beyond the box only by a splat's half side (the sample spacing) at most.
+  const int h = static_cast<int>(std::ceil(camera_.fx * box_.sampling_radius / 0.55));
+  cv::Rect grown = cv::boundingRect(labels_ == 1);
+  grown = cv::Rect(grown.x - h, grown.y - h, grown.width + 2 * h, grown.height + 2 * h);
+  EXPECT_EQ(cv::boundingRect(area) & grown, cv::boundingRect(area));
   EXPECT_TRUE(box.accepted);
   EXPECT_FALSE(small.accepted);
   EXPECT_EQ(small.rejection, "explained by box 0");

@@ -172,7 +172,10 @@ const ParamSet<FrameExplanationParams>& FrameExplanationParams::schema() {
           .add(&FrameExplanationParams::max_explained_share, "max_explained_share", "",
                ParamRange::closed(0, 1),
                "a pose more of whose confirmed surface other poses explain is rejected")
-          .flag("--max-explained-share");
+          .flag("--max-explained-share")
+          .add(&FrameExplanationParams::search_again, "search_again",
+               "an object whose every pose others explain is searched for again elsewhere")
+          .flag("--search-again");
   return schema;
 }
 
@@ -180,10 +183,12 @@ void FrameExplanationParams::validate() const {
   schema().validate(*this);
 }
 
-void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibility,
-                  const FrameExplanationParams& params) {
+std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
+                                        const FreeSpaceCheck& visibility,
+                                        const FrameExplanationParams& params) {
   params.validate();
-  if (!params.enabled) return;
+  std::vector<ExplainedPose> explained;
+  if (!params.enabled) return explained;
   // Only poses whose confirmed pixels may overlap compete, in a table of the area they cover.
   std::vector<Splats> splats;
   for (const FramePose& p : poses) {
@@ -194,7 +199,7 @@ void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibilit
   for (size_t i = 0; i < poses.size(); ++i) {
     if (overlaps[i]) area |= splats[i].box;
   }
-  if (area.empty()) return;
+  if (area.empty()) return explained;
   PixelTable table(area);
   std::vector<Claim> claims;
   for (size_t i = 0; i < poses.size(); ++i) {
@@ -205,12 +210,28 @@ void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibilit
   for (;;) {
     rankClaims(claims, table);
     const auto [worst, by] = mostExplained(claims, table, params.max_explained_share);
-    if (worst < 0) return;
+    if (worst < 0) return explained;
     claims[worst].alive = false;
+    explained.push_back({static_cast<size_t>(worst), static_cast<size_t>(by)});
     InstancePose& rejected = *poses[worst].pose;
     rejected.accepted = false;
     rejected.rejection = fmt::format("explained by {} {}", poses[by].object, poses[by].instance);
   }
+}
+
+cv::Mat confirmedArea(const std::vector<FramePose>& poses, const std::vector<bool>& counts,
+                      const FreeSpaceCheck& visibility) {
+  const CameraIntrinsics& camera = visibility.camera();
+  cv::Mat area(camera.height, camera.width, CV_8UC1, cv::Scalar(0));
+  const cv::Rect image(0, 0, camera.width, camera.height);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!counts[i] || !poses[i].pose->accepted) continue;
+    for (const cv::Vec3i& s : splatsOf(poses[i], visibility).squares) {
+      const int h = s[2];
+      area(cv::Rect(s[0] - h, s[1] - h, 2 * h + 1, 2 * h + 1) & image).setTo(255);
+    }
+  }
+  return area;
 }
 
 }  // namespace stocs

@@ -29,6 +29,12 @@ struct FrameExplanationParams {
   /// object's surface shares nearly all of it. One half: the pose's own evidence is then less than
   /// what others explain as well or better.
   float max_explained_share = 0.5f;
+  /// An object all of whose poses other objects' poses explain is searched for once more, on its
+  /// map without the surface those poses confirm (estimateFrame): its next place, e.g. the box's
+  /// own surface when its best pose took a neighbour of its size that another object explains.
+  /// Off by default: on maps from depth alone the next place is as often a distractor or an absent
+  /// object's (BENCHMARKS.md); on soft maps it changed nothing measured.
+  bool search_again = false;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<FrameExplanationParams>& schema();
@@ -45,14 +51,27 @@ struct FramePose {
   InstancePose* pose = nullptr;          ///< judged in place
 };
 
+/// A pose explainPoses rejected and the pose explaining most of its surface (indices into its
+/// `poses`).
+struct ExplainedPose {
+  size_t pose = 0;
+  size_t by = 0;
+};
+
 /// Among the accepted poses of `poses`: each measured pixel a pose confirms (a camera-facing model
 /// sample within the free-space margin of the measured depth, splatted over the sample spacing)
 /// is explained by another pose when that pose confirms it too with at least as high a map of its
 /// object there. While some accepted pose has more than max_explained_share of its pixels
 /// explained by others, the one with the largest such share (the lower confidence on a tie) is
 /// rejected, named after the pose explaining most of its pixels, and the shares are counted again.
-/// Does nothing when disabled.
-void explainPoses(std::vector<FramePose>& poses, const FreeSpaceCheck& visibility,
-                  const FrameExplanationParams& params);
+/// Does nothing when disabled. Returns the poses it rejected, in that order.
+std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
+                                        const FreeSpaceCheck& visibility,
+                                        const FrameExplanationParams& params);
+
+/// The pixels (CV_8UC1, 255) that the accepted poses of `poses` for which `counts` is true confirm,
+/// splatted as explainPoses claims them: the surface those poses explain.
+cv::Mat confirmedArea(const std::vector<FramePose>& poses, const std::vector<bool>& counts,
+                      const FreeSpaceCheck& visibility);
 
 }  // namespace stocs
