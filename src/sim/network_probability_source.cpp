@@ -22,12 +22,12 @@ class NetworkProbabilitySource : public ProbabilitySource {
 
   bool available(int scene_id, int im_id, int obj_id) const override {
     std::error_code ec;
-    return network_.params().channelOf(std::to_string(obj_id)) >= 0 &&
+    return channelOfObject(obj_id) >= 0 &&
            std::filesystem::exists(dataset_.rgbPath(scene_id, im_id), ec);
   }
 
   cv::Mat load(int scene_id, int im_id, int obj_id) const override {
-    const int channel = network_.params().channelOf(std::to_string(obj_id));
+    const int channel = channelOfObject(obj_id);
     if (channel < 0) {
       throw InputError(fmt::format("{}: object {} has no output channel", spec_, obj_id));
     }
@@ -35,6 +35,12 @@ class NetworkProbabilitySource : public ProbabilitySource {
   }
 
  private:
+  /// The channel named by `obj_id` ("5") or its BOP model file's stem ("obj_000005"); -1: none.
+  int channelOfObject(int obj_id) const {
+    const int by_id = network_.params().channelOf(std::to_string(obj_id));
+    return by_id >= 0 ? by_id : network_.params().channelOf(fmt::format("obj_{:06d}", obj_id));
+  }
+
   /// The frame's maps, kept for the objects that follow (one frame at a time).
   const std::vector<cv::Mat>& maps(int scene_id, int im_id) const {
     const auto key = std::make_pair(scene_id, im_id);
@@ -53,14 +59,20 @@ class NetworkProbabilitySource : public ProbabilitySource {
   mutable std::optional<std::pair<std::pair<int, int>, std::vector<cv::Mat>>> cached_;
 };
 
-/// A BOP dataset names its objects by obj_id: a channel list must name obj_ids or '-'.
+bool isNumber(const std::string& text) {
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+/// A BOP dataset names its objects by obj_id: a channel list must name obj_ids ("5"), model file
+/// stems ("obj_000005") or '-'.
 void requireObjectIds(const std::string& file, const std::vector<std::string>& channels) {
+  const std::string stem = "obj_";
   for (const std::string& name : channels) {
-    if (name != "-" &&
-        (name.empty() || name.find_first_not_of("0123456789") != std::string::npos)) {
+    const bool model_stem = name.compare(0, stem.size(), stem) == 0 && isNumber(name.substr(4));
+    if (name != "-" && !isNumber(name) && !model_stem) {
       throw InputError(
-          fmt::format("{}: channels names '{}'; for a BOP dataset name each channel's obj_id "
-                      "(\"-\" for none)",
+          fmt::format("{}: channels names '{}'; for a BOP dataset name each channel's obj_id or "
+                      "model file stem (\"5\" or \"obj_000005\"; \"-\" for none)",
                       file, name));
     }
   }

@@ -123,6 +123,10 @@ TEST(SegmenterModel, ASettingsFileGivesTheNetworkItsSettings) {
   const std::string defaults = networkRows(root / "data", kModel);
   EXPECT_NE(defaults.find("| network NETWORK, obj 1 |"), std::string::npos) << defaults;
   EXPECT_EQ(networkRows(root / "data", root / "same.yaml"), defaults);
+  // Channels named by the BOP model files' stems, as train_segmenter.sh --models writes them.
+  std::ofstream(root / "stems.yaml")
+      << cliSettings("'-', obj_000001, obj_000002, obj_000003, obj_000004, obj_000005, obj_000006");
+  EXPECT_EQ(networkRows(root / "data", root / "stems.yaml"), defaults);
   EXPECT_NE(networkRows(root / "data", root / "swapped.yaml"), defaults)
       << "the settings file's channels were not used";
 }
@@ -137,7 +141,8 @@ TEST(SegmenterModel, EstimateNamesBadSettings) {
            {cliSettings("'-', '1', '2', '3', '4'", 5),
             "output shape [1, 7, 120, 160] is not NCHW with 5 classes"},
            {cliSettings("'-', box, long_box, cylinder, mug, bowl, block"),
-            "bad.yaml: channels names 'box'; for a BOP dataset name each channel's obj_id"}}) {
+            "bad.yaml: channels names 'box'; for a BOP dataset name each channel's obj_id or model "
+            "file stem"}}) {
     std::ofstream(root / "bad.yaml") << text;
     std::string out;
     EXPECT_EQ(test::runCommand(kTool + " estimate --dataset " + (root / "data").string() +

@@ -2,6 +2,7 @@
 
 #include <cv_bridge/cv_bridge.h>
 #include <fmt/format.h>
+#include <ros/names.h>
 #include <sensor_msgs/image_encodings.h>
 
 #include <boost/make_shared.hpp>
@@ -31,6 +32,13 @@ stocs::SegmentationNetworkParams networkParams(const ros::NodeHandle& pnh) {
         fmt::format("parameter {} must name the object of each output channel "
                     "('-' for none)",
                     pnh.resolveName("channels")));
+  }
+  for (const std::string& name : p.channels) {  // each object's map is ~probability/<name>
+    std::string error;
+    if (name != "-" && !ros::names::validate(name, error)) {
+      throw InputError(fmt::format("parameter {} names '{}', which is not a ROS topic name: {}",
+                                   pnh.resolveName("channels"), name, error));
+    }
   }
   p.model = resolveResourcePath(p.model, {}).string();
   return p;
@@ -111,8 +119,8 @@ SegmentationNode::SegmentationNode(ros::NodeHandle pnh)
         "project's %zu meshes (%s) only: it knows nothing else, and on real images it marks "
         "unrelated objects as these. For your objects, give the StoCS node input.probability: "
         "geometric (maps from the depth alone, no network; README \"Your own objects\"), or set "
-        "~model and ~channels to a network of your own (models/README.md); "
-        "scripts/train_segmenter.sh trains only this one",
+        "~model and ~channels to a network of your own (scripts/train_segmenter.sh --models "
+        "trains one on your meshes; models/README.md)",
         network_.params().model.c_str(), objects_.size(), names.c_str());
   }
 }
