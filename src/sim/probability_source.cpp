@@ -40,6 +40,24 @@ class RealProbabilitySource : public ProbabilitySource {
   const BopDataset& dataset_;
 };
 
+/// No segmentation: every pixel of the frame is the object's (probability 1), for any object with
+/// a model: the registration methods on the whole scene.
+class WholeSceneSource : public ProbabilitySource {
+ public:
+  explicit WholeSceneSource(const BopDataset& dataset) : dataset_(dataset) {}
+  std::string spec() const override { return "whole"; }
+  bool available(int, int, int obj_id) const override {
+    std::error_code ec;
+    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
+  }
+  cv::Mat load(int scene_id, int im_id, int) const override {
+    return cv::Mat(dataset_.loadDepth(scene_id, im_id).size(), CV_32FC1, cv::Scalar(1));
+  }
+
+ private:
+  const BopDataset& dataset_;
+};
+
 /// The segmentation simulator on the frame's visible ground-truth masks, for every object of the
 /// dataset (one without ground truth in the frame gets the simulator's absent-object map); with
 /// `prefer_real`, the real map wherever the dataset has one.
@@ -99,7 +117,8 @@ std::string probabilitySourceHelp() {
       "simulated), 'onnx:MODEL' (the segmentation network MODEL on the rgb/ images: an ONNX file "
       "with the package network's settings, or a settings YAML naming one), 'geometric' (from the "
       "depth alone: regions left when the supporting planes and the depth edges are removed, "
-      "those of the object's size); presets: {}; "
+      "those of the object's size), 'whole' (no segmentation: the whole scene, every pixel 1); "
+      "presets: {}; "
       "segmentation inputs: {}",
       fmt::join(segmentationPresetNames(), ", "), segmentationInputHelp());
 }
@@ -108,6 +127,7 @@ std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec
                                                          const BopDataset& dataset, uint64_t seed) {
   if (spec == "real") return std::make_unique<RealProbabilitySource>(dataset);
   if (spec == "geometric") return makeGeometricProbabilitySource(dataset);
+  if (spec == "whole") return std::make_unique<WholeSceneSource>(dataset);
   if (spec.rfind("onnx:", 0) == 0)
     return makeNetworkProbabilitySource(spec, spec.substr(5), dataset);
   if (isSegmentationInputSpec(spec)) return makeSegmentationInputSource(spec, dataset, seed);

@@ -101,6 +101,19 @@ TEST_F(ProbabilitySourceTest, GeometricMapsComeFromTheDepthAloneForEveryModel) {
   EXPECT_LT(cv::mean(geometric->load(0, 0, gt_[0].obj_id), far)[0], 0.05);
 }
 
+TEST_F(ProbabilitySourceTest, TheWholeSceneIsEveryModelsMap) {
+  const auto whole = makeProbabilitySource("whole", *dataset_, 0);
+  EXPECT_EQ(whole->spec(), "whole");
+  EXPECT_TRUE(whole->available(0, 0, gt_[0].obj_id));
+  EXPECT_FALSE(whole->available(0, 0, 99));  // no model in the dataset
+  const cv::Mat map = whole->load(0, 0, gt_[0].obj_id);
+  EXPECT_EQ(map.size(), cv::Size(640, 480));
+  EXPECT_EQ(map.type(), CV_32FC1);
+  double lowest = 0;
+  cv::minMaxLoc(map, &lowest);
+  EXPECT_EQ(lowest, 1.0);
+}
+
 TEST_F(ProbabilitySourceTest, UnknownSourcesAndPresetsAreRefusedWithTheKnownOnes) {
   try {
     makeProbabilitySource("network", *dataset_, 0);

@@ -37,7 +37,8 @@ std::string probabilitySourceHelp();
 /// the source keeps the last frame's masks, so it is not for use from several threads at once.
 /// "onnx:SETTINGS.yaml": the network and settings a YAML file gives (makeNetworkProbabilitySource).
 /// "geometric": from the frame's depth image alone, the union of the regions that can hold the
-/// object by its model's size (geometric_segmentation.h), for any object with a model.
+/// object by its model's size (geometric_segmentation.h), for any object with a model. "whole": no
+/// segmentation, every pixel 1 (the whole scene), for any object with a model.
 std::unique_ptr<ProbabilitySource> makeProbabilitySource(const std::string& spec,
                                                          const BopDataset& dataset, uint64_t seed);
 
