@@ -78,7 +78,7 @@ class ObjectTracker::Step {
     }
     if (moved) tracker_.confirm_detection_ = true;
     out.estimate = search ? std::move(*search) : PoseEstimate{};
-    report(out);
+    report(out, detect);
     out.estimate.seconds = seconds_ + std::chrono::duration<double>(Clock::now() - start).count();
     return out;
   }
@@ -132,7 +132,11 @@ class ObjectTracker::Step {
   }
 
   /// Unsettled tracks become lost; every track's pose of the frame goes into `out`, in index order.
-  void report(ObjectTracking& out) {
+  /// `detected_here`: detection could run in this call (else it runs in the background).
+  void report(ObjectTracking& out, bool detected_here) {
+    const std::string detection = detected_here
+                                      ? "detection found no accepted pose for it"
+                                      : "detection in the background has not found it again yet";
     PoseEstimate& e = out.estimate;
     e.instances.clear();
     for (size_t k = 0; k < tracker_.tracks_.size(); ++k) {
@@ -143,9 +147,9 @@ class ObjectTracker::Step {
         track.motion.stop();
         if (attempts_[k]) pose.confidence = attempts_[k]->confidence;
         pose.accepted = false;
-        pose.rejection = attempts_[k] ? "lost: tracking " + attempts_[k]->rejection +
-                                            "; detection found no accepted pose for it"
-                                      : "lost: detection found no accepted pose for it";
+        pose.rejection = attempts_[k]
+                             ? "lost: tracking " + attempts_[k]->rejection + "; " + detection
+                             : "lost: " + detection;
       }
       e.instances.push_back(std::move(pose));
       out.states.push_back(track.state);
