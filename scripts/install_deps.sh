@@ -11,7 +11,7 @@ PACKAGES=(
   ros-message-generation libvisualization-msgs-dev libstd-srvs-dev libdiagnostic-msgs-dev
   libnodeletlib-dev libnodelet-dev libdynamic-reconfigure-config-init-mutex-dev
   python3-dynamic-reconfigure python3-geometry-msgs python3-sensor-msgs python3-tf2-msgs
-  python3-visualization-msgs python3-std-msgs python3-numpy
+  python3-visualization-msgs python3-std-msgs python3-numpy python3-pil
   libpcl-dev libopencv-dev libopencv-contrib-dev libeigen3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev libfmt-dev libspdlog-dev libnanoflann-dev

@@ -10,55 +10,18 @@ Usage: print_visibility.py DATASET [SPLIT]
 import collections
 import json
 import pathlib
-import struct
 import sys
-import zlib
 
 import numpy as np
+from PIL import Image
 
 DEPTH_TOLERANCE_MM = 3.0
 PRINT_DISTANCE = 60  # summed channel levels from the most common colour
 
 
 def read_depth_png(path):
-    """A 16-bit greyscale PNG (BOP depth) as an array: the standard library has no image codec."""
-    data = pathlib.Path(path).read_bytes()
-    pos, chunks, width, height = 8, [], 0, 0
-    while pos < len(data):
-        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + length]
-        if kind == b"IHDR":
-            width, height, bits, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
-            if (bits, colour, interlace) != (16, 0, 0):
-                raise SystemExit(f"{path}: not a 16-bit greyscale PNG without interlace")
-        elif kind == b"IDAT":
-            chunks.append(body)
-        pos += 12 + length
-    raw = zlib.decompress(b"".join(chunks))
-    stride, bpp = width * 2, 2
-    out = bytearray(stride * height)
-    previous = bytearray(stride)
-    for row in range(height):
-        kind = raw[row * (stride + 1)]
-        line = bytearray(raw[row * (stride + 1) + 1:(row + 1) * (stride + 1)])
-        for i in range(stride):
-            left = line[i - bpp] if i >= bpp else 0
-            up = previous[i]
-            if kind == 1:
-                line[i] = (line[i] + left) & 255
-            elif kind == 2:
-                line[i] = (line[i] + up) & 255
-            elif kind == 3:
-                line[i] = (line[i] + (left + up) // 2) & 255
-            elif kind == 4:
-                corner = previous[i - bpp] if i >= bpp else 0
-                p = left + up - corner
-                pa, pb, pc = abs(p - left), abs(p - up), abs(p - corner)
-                predicted = left if pa <= pb and pa <= pc else up if pb <= pc else corner
-                line[i] = (line[i] + predicted) & 255
-        out[row * stride:(row + 1) * stride] = line
-        previous = line
-    return np.frombuffer(bytes(out), dtype=">u2").reshape(height, width).astype(float)
+    """A BOP depth image (16-bit greyscale PNG) as a float array."""
+    return np.asarray(Image.open(path), dtype=float)
 
 
 def read_coloured_ply(path):
