@@ -180,9 +180,12 @@ GeometricSegmentation setGeometricProbabilities(Frame& frame,
                                                 const std::vector<FrameObject>& objects,
                                                 GeometricSegmenter& segmenter) {
   GeometricSegmentation segmentation = segmenter.segment(frame.cloud, frameCamera(frame));
+  if (const cv::Mat* colour = colourOf(frame)) addRegionColours(segmentation, *colour);
   for (const FrameObject& object : objects) {
+    const ObjectModel& model = object.model->model;
+    const ChromaticityHistogram colours = ChromaticityHistogram::of(model.colours);
     frame.probabilities[object.name] =
-        objectProbability(segmentation, modelSize(object.model->model), segmenter.params());
+        objectProbability(segmentation, modelSize(model), segmenter.params(), &colours);
   }
   return segmentation;
 }

@@ -464,8 +464,20 @@ cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t regi
   return map;
 }
 
+void addRegionColours(GeometricSegmentation& segmentation, const cv::Mat& bgr) {
+  if (bgr.type() != CV_8UC3 || bgr.size() != segmentation.plane_mask.size()) {
+    throw InputError(fmt::format("colour image {}x{} (type {}) does not fit the {}x{} depth image",
+                                 bgr.cols, bgr.rows, bgr.type(), segmentation.plane_mask.cols,
+                                 segmentation.plane_mask.rows));
+  }
+  for (DepthRegion& region : segmentation.regions) {
+    region.colours = ChromaticityHistogram::of(bgr(region.box), region.mask(region.box));
+  }
+}
+
 cv::Mat objectProbability(const GeometricSegmentation& segmentation, const ObjectSize& size,
-                          const GeometricSegmentationParams& params) {
+                          const GeometricSegmentationParams& params,
+                          const ChromaticityHistogram* colours) {
   if (!(size.diameter > 0) || !std::isfinite(size.diameter)) {
     throw InputError(fmt::format("object diameter {} m is not finite and positive", size.diameter));
   }
@@ -476,8 +488,11 @@ cv::Mat objectProbability(const GeometricSegmentation& segmentation, const Objec
   cv::Mat map(segmentation.plane_mask.size(), CV_32FC1, cv::Scalar(params.outside_floor));
   for (const DepthRegion& region : segmentation.regions) {
     if (!regionFits(region, size, params)) continue;
-    addSoftRegion(region, std::max(params.min_region_score, sizeScore(region, size, params)),
-                  params, map);
+    float score = sizeScore(region, size, params);
+    if (colours && colours->samples() > 0 && region.colours.samples() > 0) {
+      score *= 1 - params.colour_weight + params.colour_weight * region.colours.overlap(*colours);
+    }
+    addSoftRegion(region, std::max(params.min_region_score, score), params, map);
   }
   return map;
 }
@@ -515,6 +530,8 @@ const ParamSet<GeometricSegmentationParams>& GeometricSegmentationParams::schema
                "what a candidate may be thicker than the object for the sensor's noise")
           .add(&P::size_sigma, "size_sigma", "", ParamRange::aboveUpTo(0, 10),
                "deviation of ln(extent / visible extent) of a candidate's score")
+          .add(&P::colour_weight, "colour_weight", "", ParamRange::closed(0, 1),
+               "share of a candidate's score that its colours meeting the object's decide")
           .add(&P::min_region_score, "min_region_score", "", ParamRange::closed(0, 1),
                "the least score of a candidate that can hold the object")
           .add(&P::border_px, "border_px", "px", ParamRange::closed(0, 100),

@@ -26,16 +26,26 @@ class GeometricProbabilitySource : public ProbabilitySource {
   }
 
   cv::Mat load(int scene_id, int im_id, int obj_id) const override {
-    return objectProbability(frame(scene_id, im_id), size(obj_id), segmenter_.params());
+    const ObjectLook& object = look(obj_id);
+    return objectProbability(frame(scene_id, im_id), object.size, segmenter_.params(),
+                             &object.colours);
   }
 
  private:
-  /// The object's size from its model file (BOP: millimetres), measured once.
-  const ObjectSize& size(int obj_id) const {
-    auto it = sizes_.find(obj_id);
-    if (it == sizes_.end()) {
+  struct ObjectLook {
+    ObjectSize size;
+    ChromaticityHistogram colours;
+  };
+
+  /// The object's size and colours from its model file (BOP: millimetres), measured once.
+  const ObjectLook& look(int obj_id) const {
+    auto it = looks_.find(obj_id);
+    if (it == looks_.end()) {
       const MeshData mesh = loadMesh(dataset_.modelPath(obj_id).string(), 0.001f);
-      it = sizes_.emplace(obj_id, ObjectSize::of(mesh.vertices)).first;
+      it = looks_
+               .emplace(obj_id,
+                        ObjectLook{ObjectSize::of(mesh.vertices), ChromaticityHistogram::of(mesh)})
+               .first;
     }
     return it->second;
   }
@@ -55,16 +65,19 @@ class GeometricProbabilitySource : public ProbabilitySource {
                                      im_id));
       }
       const cv::Mat depth = dataset_.loadDepth(scene_id, im_id);
-      cached_.emplace(key,
-                      segmenter_.segment(depth, camera->second.intrinsics(depth.cols, depth.rows),
-                                         camera->second.depth_scale / 1000.0));
+      GeometricSegmentation segmentation =
+          segmenter_.segment(depth, camera->second.intrinsics(depth.cols, depth.rows),
+                             camera->second.depth_scale / 1000.0);
+      const cv::Mat colour = dataset_.loadColour(scene_id, im_id, depth.size());
+      if (!colour.empty()) addRegionColours(segmentation, colour);
+      cached_.emplace(key, std::move(segmentation));
     }
     return cached_->second;
   }
 
   const BopDataset& dataset_;
   mutable GeometricSegmenter segmenter_;
-  mutable std::map<int, ObjectSize> sizes_;
+  mutable std::map<int, ObjectLook> looks_;
   mutable int camera_scene_ = -1;
   mutable std::map<int, BopFrameCamera> cameras_;
   mutable std::optional<std::pair<std::pair<int, int>, GeometricSegmentation>> cached_;

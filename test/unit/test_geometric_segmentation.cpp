@@ -140,6 +140,52 @@ TEST(GeometricSegmentation, AnObjectsMapHoldsTheRegionsOfItsSize) {
   EXPECT_LT(cv::mean(own, scene.labels == kCan)[0], 0.01);
 }
 
+TEST(GeometricSegmentation, ColourTellsRegionsOfOneSizeApart) {
+  // The tall box (12 cm across as seen) is red, the can (at most 12.2 cm) green, shaded: an object
+  // of their size and the box's colour gets the box's region first, one of the can's colour the
+  // can's; without colour, or with colour_weight 0, the two regions score alike.
+  const TableScene& scene = TableScene::get();
+  GeometricSegmenter segmenter;
+  GeometricSegmentation seg = segmenter.segment(scene.depth, camera(), 1.0);
+  cv::Mat bgr(scene.labels.size(), CV_8UC3, cv::Scalar(128, 128, 128));
+  bgr.setTo(cv::Scalar(30, 30, 200), scene.labels == kTall);
+  bgr.setTo(cv::Scalar(20, 90, 20), scene.labels == kCan);  // darker: shading keeps chromaticity
+  addRegionColours(seg, bgr);
+  const ChromaticityHistogram red = ChromaticityHistogram::of({Colour(0.8f, 0.1f, 0.1f)});
+  const ChromaticityHistogram green = ChromaticityHistogram::of({Colour(0.2f, 0.9f, 0.2f)});
+  const cv::Mat tall = scene.labels == kTall, can = scene.labels == kCan;
+  const ObjectSize size{0.13f, 0.06f};
+  GeometricSegmentationParams params = segmenter.params();
+  const cv::Mat as_red = objectProbability(seg, size, params, &red);
+  EXPECT_GT(cv::mean(as_red, tall)[0], 2 * cv::mean(as_red, can)[0]);
+  const cv::Mat as_green = objectProbability(seg, size, params, &green);
+  EXPECT_GT(cv::mean(as_green, can)[0], 2 * cv::mean(as_green, tall)[0]);
+  const cv::Mat plain = objectProbability(seg, size, params);
+  EXPECT_NEAR(cv::mean(plain, tall)[0], cv::mean(plain, can)[0], 0.1);
+  params.colour_weight = 0;
+  const cv::Mat ignored = objectProbability(seg, size, params, &red);
+  EXPECT_EQ(cv::countNonZero(ignored != plain), 0);
+  expectInputError([&] { addRegionColours(seg, cv::Mat(10, 10, CV_8UC3)); }, "does not fit");
+}
+
+TEST(Chromaticity, ColoursWithoutTheirBrightness) {
+  const ChromaticityHistogram bright = ChromaticityHistogram::of({Colour(0.8f, 0.2f, 0.1f)});
+  const ChromaticityHistogram dim = ChromaticityHistogram::of({Colour(0.4f, 0.1f, 0.05f)});
+  const ChromaticityHistogram blue = ChromaticityHistogram::of({Colour(0.1f, 0.2f, 0.8f)});
+  EXPECT_NEAR(bright.overlap(dim), 1.0f, 1e-4);
+  EXPECT_LT(bright.overlap(blue), 0.05f);
+  // Too dark, clipped or unknown: no evidence, and no overlap with anything.
+  const ChromaticityHistogram none = ChromaticityHistogram::of(
+      {Colour(0.02f, 0.01f, 0.01f), Colour(1.0f, 0.3f, 0.3f), unknownColour()});
+  EXPECT_EQ(none.samples(), 0);
+  EXPECT_EQ(none.overlap(bright), 0.0f);
+  // A mesh's colours come from its surface; a mesh without colour has none.
+  MeshData mesh = boxMesh({0.1f, 0.1f, 0.1f});
+  EXPECT_EQ(ChromaticityHistogram::of(mesh).samples(), 0);
+  mesh.colours.assign(mesh.vertices.size(), Rgba(200, 50, 25, 255));
+  EXPECT_NEAR(ChromaticityHistogram::of(mesh).overlap(bright), 1.0f, 1e-3);
+}
+
 TEST(GeometricSegmentation, WithoutTheEdgesTheTouchingBoxesMerge) {
   const TableScene& scene = TableScene::get();
   GeometricSegmentationParams params;

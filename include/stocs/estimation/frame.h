@@ -85,8 +85,10 @@ ObjectInput objectInput(const Frame& frame, CameraIntrinsics&& camera, const Fra
 
 /// Depth alone in place of a network: segments the frame's cloud with `segmenter` and sets the
 /// probability map of every object of `objects` to the union of the regions that can hold it
-/// (objectProbability, by its model's diameter and thinnest width). Returns the segmentation.
-/// Throws InputError as GeometricSegmenter::segment does (an empty cloud, one without depth).
+/// (objectProbability, by its model's diameter and thinnest width, and by its colours where the
+/// frame and the model have colour). Returns the segmentation. Throws InputError as
+/// GeometricSegmenter::segment does (an empty cloud, one without depth), or for a colour image
+/// that does not fit the cloud.
 GeometricSegmentation setGeometricProbabilities(Frame& frame,
                                                 const std::vector<FrameObject>& objects,
                                                 GeometricSegmenter& segmenter);

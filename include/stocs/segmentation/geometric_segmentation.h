@@ -12,6 +12,7 @@
 
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"
+#include "stocs/segmentation/chromaticity.h"
 #include "stocs/util/param_set.h"
 
 namespace stocs {
@@ -53,6 +54,11 @@ struct GeometricSegmentationParams {
   /// extent (about 0.95 of its diameter): a bell of this deviation in ln(extent / visible extent).
   /// Sampling and scoring weigh it by that, so a region of the object's size comes first.
   float size_sigma = 0.15f;
+  /// Where the frame and the object's model have colour, a candidate's score is scaled by
+  /// 1 - colour_weight + colour_weight x the share of the object's colours it holds
+  /// (ChromaticityHistogram::overlap): a region of the object's size and of other colours falls
+  /// behind one of its colours. 0: colour is ignored.
+  float colour_weight = 0.8f;
   /// ... and scores at least this (above estimation.segment.min_probability: it stays a candidate).
   float min_region_score = 0.25f;
   /// Softening of each candidate as a hard mask (SegmentationInputParams): the border's blur ...
@@ -85,6 +91,8 @@ struct DepthRegion {
   float extent = 0;          ///< metres: the largest distance across its points (approximate)
   float min_width = 0;       ///< metres: its thinnest width (pointSetMinWidth)
   Eigen::Vector3f centroid;  ///< metres, camera frame
+  /// Its pixels' colours (addRegionColours); empty without a colour image.
+  ChromaticityHistogram colours;
 };
 
 /// What the segmentation found in one frame.
@@ -133,11 +141,17 @@ bool regionFits(const DepthRegion& region, const ObjectSize& size,
 cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t region,
                           const GeometricSegmentationParams& params);
 
+/// Fills each region's colours from `bgr` (CV_8UC3, the segmented image's size, registered with
+/// it). Throws InputError for another type or size.
+void addRegionColours(GeometricSegmentation& segmentation, const cv::Mat& bgr);
+
 /// The probability map of an object of `size`: the regions that can hold it (regionFits), each
-/// softened with the score of its extent against the object's (size_sigma); the outside floor
-/// everywhere when none can. Throws InputError for a
+/// softened with the score of its extent against the object's (size_sigma), scaled by colour
+/// where the region and `colours` (the model's; null or empty: none) have it (colour_weight);
+/// the outside floor everywhere when none can. Throws InputError for a
 /// diameter that is not finite and positive, or a width that is not finite and non-negative.
 cv::Mat objectProbability(const GeometricSegmentation& segmentation, const ObjectSize& size,
-                          const GeometricSegmentationParams& params);
+                          const GeometricSegmentationParams& params,
+                          const ChromaticityHistogram* colours = nullptr);
 
 }  // namespace stocs
