@@ -93,6 +93,7 @@ const SceneFrame& demoScene() {
     const BopFrameCamera cam = ds.sceneCameras(0).at(0);
     s.frame = stocs::Frame::fromDepth(depth, cam.intrinsics(depth.cols, depth.rows),
                                       cam.depth_scale / 1000);
+    s.colour = ds.loadColour(0, 0, depth.size());
     const std::map<int, std::vector<BopGtInstance>> truth = ds.sceneGroundTruth(0);
     for (const BopGtInstance& g : truth.at(0)) {
       const std::string name = std::to_string(g.obj_id);

@@ -30,6 +30,7 @@ struct SceneFrame {
   stocs::Frame frame;
   std::map<int, PreparedModel> models;  ///< by object id, with the default preparation
   std::vector<FrameObject> objects;     ///< named by object id
+  cv::Mat colour;  ///< the image's rgb/ (BGR), not set in `frame`: a benchmark opts in
 };
 
 /// Default parameters on one thread, so that times are per core.

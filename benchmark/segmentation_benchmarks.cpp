@@ -4,7 +4,7 @@
 // 32-bit or 8-bit (what the node publishes), and the whole segment() (all seven maps, float).
 // Then the segmentation from depth alone on the demo's generated 640x480 frame (six objects, two
 // distractors): the regions (geometricSegment), and the regions with the six objects' maps
-// (geometricMaps, what `--prob geometric` costs a frame).
+// (geometricMaps, what `--prob geometric` costs a frame), without and with the colour image.
 //   build/.../stocs_segmentation_benchmarks
 #include <benchmark/benchmark.h>
 
@@ -63,9 +63,11 @@ void geometricSegment(benchmark::State& state) {
   }
 }
 
+/// Arg: 1 with the image's colour (each region's colour histogram), 0 without.
 void geometricMaps(benchmark::State& state) {
   const SceneFrame& scene = demoScene();
   stocs::Frame frame = scene.frame;
+  if (state.range(0)) frame.colour = scene.colour;
   GeometricSegmenter segmenter;
   for (auto _ : state) {
     benchmark::DoNotOptimize(setGeometricProbabilities(frame, scene.objects, segmenter).planes);
@@ -83,7 +85,13 @@ BENCHMARK(upsampleObjects)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(segment)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK(geometricSegment)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(geometricMaps)->MeasureProcessCPUTime()->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(geometricMaps)
+    ->ArgName("colour")
+    ->Arg(0)
+    ->Arg(1)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace stocs::bench
