@@ -9,20 +9,10 @@
 #include "stocs/util/random.h"
 
 namespace stocs {
-namespace {
-
-/// Below this sum of channels (of 3) the chromaticity is mostly noise; at or above this channel
-/// value the colour is clipped and its chromaticity wrong.
-constexpr float kDarkSum = 0.15f;
-constexpr float kSaturated = 0.99f;
-
-}  // namespace
 
 ChromaticityHistogram ChromaticityHistogram::of(const std::vector<Colour>& colours) {
   ChromaticityHistogram h;
-  for (const Colour& c : colours) {
-    if (isKnown(c)) h.add(c);
-  }
+  for (const Colour& c : colours) h.add(c);
   return h;
 }
 
@@ -47,15 +37,17 @@ ChromaticityHistogram ChromaticityHistogram::of(const cv::Mat& bgr, const cv::Ma
     const cv::Vec3b* row = bgr.ptr<cv::Vec3b>(y);
     const uchar* inside = mask.ptr<uchar>(y);
     for (int x = 0; x < bgr.cols; ++x) {
-      if (inside[x]) h.add(Colour(row[x][2], row[x][1], row[x][0]) / 255.0f);
+      if (!inside[x]) continue;
+      const Colour observed = Colour(row[x][2], row[x][1], row[x][0]) / 255.0f;
+      if (!isClipped(observed)) h.add(observed);
     }
   }
   return h;
 }
 
 void ChromaticityHistogram::add(const Colour& rgb) {
+  if (!carriesChromaticity(rgb)) return;
   const float sum = rgb.sum();
-  if (!(sum >= kDarkSum) || rgb.maxCoeff() >= kSaturated) return;
   // Bin centres at (i + 0.5) / kBins: bilinear weights over the four nearest.
   const float u = std::clamp(rgb.x() / sum * kBins - 0.5f, 0.0f, kBins - 1.0f);
   const float v = std::clamp(rgb.y() / sum * kBins - 0.5f, 0.0f, kBins - 1.0f);

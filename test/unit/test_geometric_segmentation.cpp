@@ -174,11 +174,19 @@ TEST(Chromaticity, ColoursWithoutTheirBrightness) {
   const ChromaticityHistogram blue = ChromaticityHistogram::of({Colour(0.1f, 0.2f, 0.8f)});
   EXPECT_NEAR(bright.overlap(dim), 1.0f, 1e-4);
   EXPECT_LT(bright.overlap(blue), 0.05f);
-  // Too dark, clipped or unknown: no evidence, and no overlap with anything.
-  const ChromaticityHistogram none = ChromaticityHistogram::of(
-      {Colour(0.02f, 0.01f, 0.01f), Colour(1.0f, 0.3f, 0.3f), unknownColour()});
+  // Too dark or unknown: no evidence, and no overlap with anything.
+  const ChromaticityHistogram none =
+      ChromaticityHistogram::of({Colour(0.02f, 0.01f, 0.01f), unknownColour()});
   EXPECT_EQ(none.samples(), 0);
   EXPECT_EQ(none.overlap(bright), 0.0f);
+  // A full channel is a model's true colour, but a camera's clipped one.
+  const Colour full(1.0f, 0.25f, 0.125f);
+  EXPECT_NEAR(ChromaticityHistogram::of({full}).overlap(bright), 1.0f, 1e-4);
+  cv::Mat bgr(2, 2, CV_8UC3, cv::Scalar(0.125 * 255, 0.25 * 255, 255));
+  bgr.at<cv::Vec3b>(0, 0) = cv::Vec3b(25, 50, 200);
+  const ChromaticityHistogram seen = ChromaticityHistogram::of(bgr, cv::Mat(2, 2, CV_8UC1, 1));
+  EXPECT_EQ(seen.samples(), 1);
+  EXPECT_NEAR(seen.overlap(bright), 1.0f, 1e-4);
   // A mesh's colours come from its surface; a mesh without colour has none.
   MeshData mesh = boxMesh({0.1f, 0.1f, 0.1f});
   EXPECT_EQ(ChromaticityHistogram::of(mesh).samples(), 0);

@@ -36,6 +36,17 @@ inline bool isKnown(const Colour& c) {
   return !std::isnan(c.x());
 }
 
+/// Whether a colour's chromaticity (its channels over their sum) says more than noise: known and
+/// not too dark (channels summing to at least 0.15 of 3).
+inline bool carriesChromaticity(const Colour& c) {
+  return c.sum() >= 0.15f;  // false for NaN
+}
+/// Whether a camera's colour is clipped (a channel at 250 of 255 or more): its chromaticity is
+/// wrong. Model colours are what the surface is, so a full channel there is no clipping.
+inline bool isClipped(const Colour& observed) {
+  return observed.maxCoeff() >= 250.0f / 255.0f;
+}
+
 /// A vertex colour (RGBA 0-255, alpha 0 unknown) as a Colour.
 inline Colour toColour(const Rgba& rgba) {
   return rgba[3] == 0 ? unknownColour() : Colour(rgba.head<3>().cast<float>() / 255.0f);

@@ -20,16 +20,17 @@ class ChromaticityHistogram {
  public:
   static constexpr int kBins = 8;  ///< per axis over [0, 1]
 
-  /// Of colours in [0, 1] (unknown ones skipped).
+  /// Of a model's colours in [0, 1] (unknown and too dark ones skipped).
   static ChromaticityHistogram of(const std::vector<Colour>& colours);
   /// Of a model file's surface: 2000 samples spread by area for a mesh (its vertex colours
   /// interpolated), the points' colours for a point model; empty without colour.
   static ChromaticityHistogram of(const MeshData& mesh);
-  /// Of the pixels of `bgr` (CV_8UC3) where `mask` (CV_8UC1, its size) is non-zero.
+  /// Of the pixels of `bgr` (CV_8UC3) where `mask` (CV_8UC1, its size) is non-zero; clipped
+  /// pixels (mesh.h's isClipped) skipped.
   static ChromaticityHistogram of(const cv::Mat& bgr, const cv::Mat& mask);
 
-  /// Adds a colour in [0, 1], spread over the four nearest bins; one too dark or saturated to
-  /// carry chromaticity is skipped.
+  /// Adds a colour in [0, 1], spread over the four nearest bins; one that carries no chromaticity
+  /// (unknown or too dark) is skipped.
   void add(const Colour& rgb);
   /// Colours counted.
   int samples() const { return samples_; }

@@ -7,11 +7,6 @@
 namespace stocs {
 namespace {
 
-// Colours whose channels sum below this (of 3) are too dark for their chromaticity to be more
-// than noise; an observed channel at or above kSaturated is clipped, its chromaticity wrong.
-constexpr float kDarkSum = 0.15f;
-constexpr float kSaturated = 250.0f / 255.0f;
-
 Eigen::Vector3f chromaticity(const Eigen::Vector3f& rgb) {
   return rgb / rgb.sum();
 }
@@ -22,10 +17,10 @@ void collectPairs(const ObjectModel& model, const Eigen::Isometry3f& pose,
                   std::vector<Eigen::Vector3f>& model_rgb, std::vector<Eigen::Vector3f>& seen_rgb) {
   visibility.visit(model, pose, [&](size_t i, int u, int v, SampleView view) {
     const Colour& m = model.colours[i];
-    if (view != SampleView::kConfirmed || !isKnown(m) || m.sum() < kDarkSum) return;
+    if (view != SampleView::kConfirmed || !carriesChromaticity(m)) return;
     const cv::Vec3b& bgr = colour.at<cv::Vec3b>(v, u);
     const Eigen::Vector3f o = Eigen::Vector3f(bgr[2], bgr[1], bgr[0]) / 255.0f;
-    if (o.sum() < kDarkSum || o.maxCoeff() >= kSaturated) return;
+    if (!carriesChromaticity(o) || isClipped(o)) return;
     model_rgb.push_back(m);
     seen_rgb.push_back(o);
   });
