@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <optional>
+#include <utility>
 
 #include "geometric_probability_source.h"
 #include "network_probability_source.h"
@@ -51,11 +52,18 @@ class WholeSceneSource : public ProbabilitySource {
     return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
   }
   cv::Mat load(int scene_id, int im_id, int) const override {
-    return cv::Mat(dataset_.loadDepth(scene_id, im_id).size(), CV_32FC1, cv::Scalar(1));
+    const std::pair<int, int> image{scene_id, im_id};
+    if (image != image_) {  // the depth is read once per image, for its size
+      size_ = dataset_.loadDepth(scene_id, im_id).size();
+      image_ = image;
+    }
+    return cv::Mat(size_, CV_32FC1, cv::Scalar(1));
   }
 
  private:
   const BopDataset& dataset_;
+  mutable std::pair<int, int> image_{-1, -1};
+  mutable cv::Size size_;
 };
 
 /// The segmentation simulator on the frame's visible ground-truth masks, for every object of the
