@@ -1,6 +1,6 @@
 // The frame-level explanation on rendered boxes with hand-set poses, maps and confidences: an
-// absent look-alike fitted on the present box, a second pose of one box in a bin, and two separate
-// objects (nothing lost).
+// absent look-alike fitted on the present box, a second pose of one box in a bin, a worse-fitting
+// object over a box where the maps mark both alike, and two separate objects (nothing lost).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -99,6 +99,22 @@ TEST_F(FrameExplanationTest, TwoPosesOfOneBoxInABinKeepOne) {
   EXPECT_TRUE(other.accepted);  // its neighbour shares only its outline
   EXPECT_FALSE(second.accepted);
   EXPECT_EQ(second.rejection, "explained by box 0");
+}
+
+TEST_F(FrameExplanationTest, WhereTwoObjectsMapsMarkAlikeThePoseThatFitsBetterHoldsTheSurface) {
+  const Eigen::Isometry3f a = at(-0.046f, 0), c = at(0.046f, 0);  // touching boxes
+  render({a, c});
+  // A longer object posed over box a and part of c: it claims all of a's surface, a only part of
+  // its. Maps from depth alone mark a region alike for both objects; a fits better.
+  const ObjectModel long_box = prepareModel(boxMesh({0.144f, 0.055f, 0.035f}), {});
+  const cv::Mat map_a = map(0, 0.8f), map_long = map(0, 0.8f) + map(1, 0.8f);
+  InstancePose right = instance(a, 0.9f), wrong = instance(at(-0.019f, 0), 0.6f);
+  std::vector<FramePose> poses = {{"a", 0, &box_, &map_a, &right},
+                                  {"long", 0, &long_box, &map_long, &wrong}};
+  explain(poses);
+  EXPECT_TRUE(right.accepted);
+  EXPECT_FALSE(wrong.accepted);
+  EXPECT_EQ(wrong.rejection, "explained by a 0");
 }
 
 TEST_F(FrameExplanationTest, TwoSeparateObjectsAreBothKept) {

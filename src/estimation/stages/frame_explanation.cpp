@@ -15,6 +15,7 @@ namespace {
 struct Claim {
   std::vector<int> pixels;  ///< unique indices into the PixelTable's area
   std::vector<float> map;   ///< the pose's object's probability at each pixel
+  const std::string* object = nullptr;
   float confidence = 0;
   bool alive = true;  ///< still accepted
 };
@@ -42,27 +43,18 @@ Splats splatsOf(const FramePose& p, const FreeSpaceCheck& visibility) {
   return out;
 }
 
-/// Per pixel of `area` (the image part where claims overlap), the two living claims with the
-/// highest map there (-1: none), ties included: enough to tell whether another claim explains a
-/// pixel at least as well as a given one. Also the last claim that marked each pixel, so that a
-/// claim lists a pixel once.
+/// The image part where claims overlap, and the last claim that marked each of its pixels, so
+/// that a claim lists a pixel once.
 struct PixelTable {
-  explicit PixelTable(const cv::Rect& area)
-      : area(area),
-        first(area.area(), -1),
-        second(area.area(), -1),
-        first_map(area.area(), 0),
-        second_map(area.area(), 0),
-        marked_by(area.area(), -1) {}
+  explicit PixelTable(const cv::Rect& area) : area(area), marked_by(area.area(), -1) {}
   cv::Rect area;
-  std::vector<int> first, second;
-  std::vector<float> first_map, second_map;
   std::vector<int> marked_by;
 };
 
 /// Claim `id`: the pixels of its splats (all within the table's area) and its map there.
 Claim claimOf(const FramePose& p, const Splats& splats, int id, PixelTable& table) {
   Claim c;
+  c.object = &p.object;
   c.confidence = p.pose->confidence;
   const cv::Rect& area = table.area;
   for (const cv::Vec3i& s : splats.squares) {
@@ -92,64 +84,81 @@ std::vector<char> overlapping(const std::vector<Splats>& splats) {
   return out;
 }
 
-/// Fills `t`'s two best claims of every pixel some claim holds.
-void rankClaims(const std::vector<Claim>& claims, PixelTable& t) {
+/// Every claim on each pixel of the area: (claim, index of the pixel in the claim's list).
+struct ClaimsPerPixel {
+  std::vector<int> start;  ///< pixel p's claims are entries [start[p], start[p + 1])
+  std::vector<std::pair<int, int>> entries;
+};
+
+ClaimsPerPixel claimsPerPixel(const std::vector<Claim>& claims, int pixels) {
+  ClaimsPerPixel out;
+  out.start.assign(pixels + 1, 0);
   for (const Claim& c : claims) {
-    for (int p : c.pixels) t.first[p] = t.second[p] = -1;
+    for (int p : c.pixels) ++out.start[p + 1];
   }
+  for (int p = 0; p < pixels; ++p) out.start[p + 1] += out.start[p];
+  out.entries.resize(out.start.back());
+  std::vector<int> next(out.start.begin(), out.start.end() - 1);
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
-    if (!claims[i].alive) continue;
     for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
-      const int p = claims[i].pixels[k];
-      const float m = claims[i].map[k];
-      if (t.first[p] < 0 || m > t.first_map[p]) {
-        t.second[p] = t.first[p];
-        t.second_map[p] = t.first_map[p];
-        t.first[p] = i;
-        t.first_map[p] = m;
-      } else if (t.second[p] < 0 || m > t.second_map[p]) {
-        t.second[p] = i;
-        t.second_map[p] = m;
-      }
+      out.entries[next[claims[i].pixels[k]]++] = {i, static_cast<int>(k)};
     }
   }
+  return out;
 }
 
-/// The share of a claim's pixels that another living claim confirms with at least as high a map
-/// (the network says that object is there as much or more), and the claim explaining most of them.
+/// How strongly claim `c` holds its k-th pixel against a claim of `other_object`: its map there,
+/// times its confidence against another object. Two poses of one object share its map, so the map
+/// decides between them; two objects' maps may mark one region alike (maps from depth alone mark
+/// every region of an object's size), and then the pose that fits better holds it.
+float hold(const Claim& c, int k, const std::string& other_object) {
+  return *c.object == other_object ? c.map[k] : c.map[k] * c.confidence;
+}
+
+/// The share of a claim's pixels that another living claim confirms and holds at least as
+/// strongly (hold), and the claim explaining most of them.
 struct Explained {
   float share = 0;
   int by = -1;
 };
 
-Explained explainedShare(const std::vector<Claim>& claims, int i, const PixelTable& t) {
+Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPerPixel& table) {
   std::vector<int> by(claims.size(), 0);
   int explained = 0;
-  for (size_t k = 0; k < claims[i].pixels.size(); ++k) {
-    const int p = claims[i].pixels[k];
-    const bool first = t.first[p] == i;
-    const int other = first ? t.second[p] : t.first[p];
-    const float other_map = first ? t.second_map[p] : t.first_map[p];
-    if (other < 0 || other_map < claims[i].map[k]) continue;
+  const Claim& mine = claims[i];
+  for (size_t k = 0; k < mine.pixels.size(); ++k) {
+    const int p = mine.pixels[k];
+    int best = -1;
+    float best_hold = 0;
+    for (int e = table.start[p]; e < table.start[p + 1]; ++e) {
+      const auto [j, kj] = table.entries[e];
+      if (j == i || !claims[j].alive) continue;
+      const float theirs = hold(claims[j], kj, *mine.object);
+      if (theirs < hold(mine, static_cast<int>(k), *claims[j].object)) continue;
+      if (best < 0 || theirs > best_hold) {
+        best = j;
+        best_hold = theirs;
+      }
+    }
+    if (best < 0) continue;
     ++explained;
-    ++by[other];
+    ++by[best];
   }
   if (explained == 0) return {};
   const auto most = std::max_element(by.begin(), by.end());
-  return {static_cast<float>(explained) / claims[i].pixels.size(),
-          static_cast<int>(most - by.begin())};
+  return {static_cast<float>(explained) / mine.pixels.size(), static_cast<int>(most - by.begin())};
 }
 
 /// The living claim most explained by others above the limit, the lower confidence on a tie
 /// (first: -1 if none), and the claim explaining most of it. Most redundant first: a pose slid
 /// across two boxes goes before the two right poses, each of which it covers by half.
-std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const PixelTable& t,
+std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const ClaimsPerPixel& table,
                                   float max_share) {
   std::pair<int, int> worst{-1, -1};
   float worst_share = 0;
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
-    const Explained e = explainedShare(claims, i, t);
+    const Explained e = explainedShare(claims, i, table);
     if (e.share <= max_share) continue;
     const bool tie = worst.first >= 0 && e.share == worst_share;
     if (worst.first < 0 || e.share > worst_share ||
@@ -207,9 +216,9 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
     claims.push_back(overlaps[i] ? claimOf(poses[i], splats[i], id, table) : Claim{});
     claims.back().alive = poses[i].pose->accepted;
   }
+  const ClaimsPerPixel per_pixel = claimsPerPixel(claims, area.area());
   for (;;) {
-    rankClaims(claims, table);
-    const auto [worst, by] = mostExplained(claims, table, params.max_explained_share);
+    const auto [worst, by] = mostExplained(claims, per_pixel, params.max_explained_share);
     if (worst < 0) return explained;
     claims[worst].alive = false;
     explained.push_back({static_cast<size_t>(worst), static_cast<size_t>(by)});
