@@ -71,7 +71,7 @@ class FrameExplanation {
   /// explainPoses over every instance of `estimates[i]`, the estimate of object i.
   std::vector<ExplainedPose> explain(const std::vector<PoseEstimate*>& estimates) {
     collect(estimates);
-    return explainPoses(poses_, visibility_, params_.explanation);
+    return explainPoses(poses_, visibility_, params_.explanation, frame_.maps_name_objects);
   }
   std::vector<ExplainedPose> explain(std::vector<ObjectResult>& results) {
     return explain(estimatesOf(results));
@@ -181,6 +181,7 @@ GeometricSegmentation setGeometricProbabilities(Frame& frame,
                                                 GeometricSegmenter& segmenter) {
   GeometricSegmentation segmentation = segmenter.segment(frame.cloud, frameCamera(frame));
   if (const cv::Mat* colour = colourOf(frame)) addRegionColours(segmentation, *colour);
+  frame.maps_name_objects = false;
   for (const FrameObject& object : objects) {
     const ObjectModel& model = object.model->model;
     const ChromaticityHistogram colours = ChromaticityHistogram::of(model.colours);

@@ -19,6 +19,7 @@ class GeometricProbabilitySource : public ProbabilitySource {
       : dataset_(dataset), segmenter_(params) {}
 
   std::string spec() const override { return "geometric"; }
+  bool namesObjects() const override { return false; }  // every region of an object's size
 
   bool available(int, int, int obj_id) const override {
     std::error_code ec;

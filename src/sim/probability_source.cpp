@@ -47,6 +47,7 @@ class WholeSceneSource : public ProbabilitySource {
  public:
   explicit WholeSceneSource(const BopDataset& dataset) : dataset_(dataset) {}
   std::string spec() const override { return "whole"; }
+  bool namesObjects() const override { return false; }
   bool available(int, int, int obj_id) const override {
     std::error_code ec;
     return std::filesystem::exists(dataset_.modelPath(obj_id), ec);

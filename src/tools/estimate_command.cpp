@@ -202,6 +202,7 @@ class EstimateRun {
   /// definition of the time), as a frame without its cloud.
   Frame rawFrame(const ImageTargets& image, cv::Mat& depth) {
     Frame frame;
+    frame.maps_name_objects = probabilities_->namesObjects();
     for (int obj : image.objects) {
       model(obj);
       const cv::Mat map = probabilities_->load(image.scene, image.im, obj);

@@ -41,6 +41,7 @@ TEST_F(ProbabilitySourceTest, SimUsesRealMapsWhereTheyExistAndSimulatesElsewhere
   const auto sim = makeProbabilitySource("sim:clean", *dataset_, 1);
   const auto simonly = makeProbabilitySource("simonly:clean", *dataset_, 1);
   EXPECT_EQ(sim->spec(), "sim:clean");
+  EXPECT_TRUE(real->namesObjects() && sim->namesObjects());  // a network's maps, real or simulated
   EXPECT_TRUE(real->available(0, 0, kept));
   EXPECT_FALSE(real->available(0, 0, removed));
   EXPECT_TRUE(sim->available(0, 0, removed));
@@ -82,6 +83,7 @@ TEST_F(ProbabilitySourceTest, GeometricMapsComeFromTheDepthAloneForEveryModel) {
   std::filesystem::remove_all(root_ / "test" / "000000" / "prob");  // no map to lean on
   const auto geometric = makeProbabilitySource("geometric", *dataset_, 0);
   EXPECT_EQ(geometric->spec(), "geometric");
+  EXPECT_FALSE(geometric->namesObjects());  // every region of an object's size
   EXPECT_TRUE(geometric->available(0, 0, gt_[0].obj_id));
   EXPECT_FALSE(geometric->available(0, 0, 99));  // no model in the dataset
   cv::Mat anywhere(480, 640, CV_8UC1, cv::Scalar(0));
@@ -104,6 +106,7 @@ TEST_F(ProbabilitySourceTest, GeometricMapsComeFromTheDepthAloneForEveryModel) {
 TEST_F(ProbabilitySourceTest, TheWholeSceneIsEveryModelsMap) {
   const auto whole = makeProbabilitySource("whole", *dataset_, 0);
   EXPECT_EQ(whole->spec(), "whole");
+  EXPECT_FALSE(whole->namesObjects());
   EXPECT_TRUE(whole->available(0, 0, gt_[0].obj_id));
   EXPECT_FALSE(whole->available(0, 0, 99));  // no model in the dataset
   const cv::Mat map = whole->load(0, 0, gt_[0].obj_id);

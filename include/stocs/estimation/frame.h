@@ -27,6 +27,10 @@ struct Frame {
   std::optional<CameraIntrinsics> camera;
   /// Per object name: CV_32FC1 class probabilities in [0, 1], the cloud's size.
   std::map<std::string, cv::Mat> probabilities;
+  /// Whether the maps say which object is where (a network's, masks, labels), so that between two
+  /// objects' poses on one surface the map decides (explainPoses). False for maps that mark every
+  /// region of an object's size alike (setGeometricProbabilities sets it): the better fit decides.
+  bool maps_name_objects = true;
   cv::Mat boundary;  ///< optional instance boundary map: CV_8UC1, >= 128 interior
   /// Optional colour image registered with the cloud: CV_8UC3 BGR, the cloud's size, pixel (u, v)
   /// the colour of cloud point (u, v). Empty: no colour.
@@ -86,9 +90,9 @@ ObjectInput objectInput(const Frame& frame, CameraIntrinsics&& camera, const Fra
 /// Depth alone in place of a network: segments the frame's cloud with `segmenter` and sets the
 /// probability map of every object of `objects` to the union of the regions that can hold it
 /// (objectProbability, by its model's diameter and thinnest width, and by its colours where the
-/// frame and the model have colour). Returns the segmentation. Throws InputError as
-/// GeometricSegmenter::segment does (an empty cloud, one without depth), or for a colour image
-/// that does not fit the cloud.
+/// frame and the model have colour), and maps_name_objects to false. Returns the segmentation.
+/// Throws InputError as GeometricSegmenter::segment does (an empty cloud, one without depth), or
+/// for a colour image that does not fit the cloud.
 GeometricSegmentation setGeometricProbabilities(Frame& frame,
                                                 const std::vector<FrameObject>& objects,
                                                 GeometricSegmenter& segmenter);

@@ -23,6 +23,8 @@ class ProbabilitySource {
   virtual bool available(int scene_id, int im_id, int obj_id) const = 0;
   /// The map as CV_32FC1 in [0, 1]; throws InputError naming the file or the problem.
   virtual cv::Mat load(int scene_id, int im_id, int obj_id) const = 0;
+  /// Whether its maps say which object is where (Frame::maps_name_objects).
+  virtual bool namesObjects() const { return true; }
 };
 
 /// What the specs mean, for help texts.

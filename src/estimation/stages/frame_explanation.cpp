@@ -107,12 +107,14 @@ ClaimsPerPixel claimsPerPixel(const std::vector<Claim>& claims, int pixels) {
   return out;
 }
 
-/// How strongly claim `c` holds its k-th pixel against a claim of `other_object`: its map there,
-/// times its confidence against another object. Two poses of one object share its map, so the map
-/// decides between them; two objects' maps may mark one region alike (maps from depth alone mark
-/// every region of an object's size), and then the pose that fits better holds it.
-float hold(const Claim& c, int k, const std::string& other_object) {
-  return *c.object == other_object ? c.map[k] : c.map[k] * c.confidence;
+/// How strongly claim `c` holds its k-th pixel against a claim of `other_object`: its map there;
+/// times its confidence against another object when the maps do not name objects. Two poses of
+/// one object share its map, and a network's maps say which object is where, so the map decides;
+/// maps from depth alone mark every region of an object's size alike, and then the pose that fits
+/// better holds it.
+float hold(const Claim& c, int k, const std::string& other_object, bool maps_name_objects) {
+  if (maps_name_objects || *c.object == other_object) return c.map[k];
+  return c.map[k] * c.confidence;
 }
 
 /// The share of a claim's pixels that another living claim confirms and holds at least as
@@ -122,7 +124,8 @@ struct Explained {
   int by = -1;
 };
 
-Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPerPixel& table) {
+Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPerPixel& table,
+                         bool maps_name_objects) {
   std::vector<int> by(claims.size(), 0);
   int explained = 0;
   const Claim& mine = claims[i];
@@ -133,8 +136,8 @@ Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPe
     for (int e = table.start[p]; e < table.start[p + 1]; ++e) {
       const auto [j, kj] = table.entries[e];
       if (j == i || !claims[j].alive) continue;
-      const float theirs = hold(claims[j], kj, *mine.object);
-      if (theirs < hold(mine, static_cast<int>(k), *claims[j].object)) continue;
+      const float theirs = hold(claims[j], kj, *mine.object, maps_name_objects);
+      if (theirs < hold(mine, static_cast<int>(k), *claims[j].object, maps_name_objects)) continue;
       if (best < 0 || theirs > best_hold) {
         best = j;
         best_hold = theirs;
@@ -153,12 +156,12 @@ Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPe
 /// (first: -1 if none), and the claim explaining most of it. Most redundant first: a pose slid
 /// across two boxes goes before the two right poses, each of which it covers by half.
 std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const ClaimsPerPixel& table,
-                                  float max_share) {
+                                  float max_share, bool maps_name_objects) {
   std::pair<int, int> worst{-1, -1};
   float worst_share = 0;
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
-    const Explained e = explainedShare(claims, i, table);
+    const Explained e = explainedShare(claims, i, table, maps_name_objects);
     if (e.share <= max_share) continue;
     const bool tie = worst.first >= 0 && e.share == worst_share;
     if (worst.first < 0 || e.share > worst_share ||
@@ -194,7 +197,8 @@ void FrameExplanationParams::validate() const {
 
 std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
                                         const FreeSpaceCheck& visibility,
-                                        const FrameExplanationParams& params) {
+                                        const FrameExplanationParams& params,
+                                        bool maps_name_objects) {
   params.validate();
   std::vector<ExplainedPose> explained;
   if (!params.enabled) return explained;
@@ -218,7 +222,8 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
   }
   const ClaimsPerPixel per_pixel = claimsPerPixel(claims, area.area());
   for (;;) {
-    const auto [worst, by] = mostExplained(claims, per_pixel, params.max_explained_share);
+    const auto [worst, by] =
+        mostExplained(claims, per_pixel, params.max_explained_share, maps_name_objects);
     if (worst < 0) return explained;
     claims[worst].alive = false;
     explained.push_back({static_cast<size_t>(worst), static_cast<size_t>(by)});

@@ -189,7 +189,11 @@ TEST_F(FrameEstimation, GeometricInputFindsTheKnownPoseFromTheCloudAlone) {
   EstimationJob job = cloudJob();
   job.frame.probabilities.clear();
   stocs::GeometricSegmenter segmenter;
-  expectFoundNearTruth(detectJob(job, *setup("input: {probability: geometric}\n"), &segmenter));
+  const auto geometric = setup("input: {probability: geometric}\n");
+  expectFoundNearTruth(detectJob(job, *geometric, &segmenter));
+  // Its maps mark every region of the object's size: they do not say which object is where.
+  EXPECT_FALSE(estimationFrame(job, *geometric, &segmenter).maps_name_objects);
+  EXPECT_TRUE(estimationFrame(cloudJob(), *setup(""), nullptr).maps_name_objects);
 }
 
 TEST_F(FrameEstimation, GeometricInputNamesAnUnorganizedCloud) {

@@ -61,15 +61,17 @@ struct ExplainedPose {
 /// Among the accepted poses of `poses`: each measured pixel a pose confirms (a camera-facing model
 /// sample within the free-space margin of the measured depth, splatted over the sample spacing)
 /// is explained by another pose when that pose confirms it too and holds it at least as strongly:
-/// by its object's map there against a pose of the same object, by map x confidence against
-/// another object's (maps from depth alone mark a region alike for every object of its size; the
-/// pose that fits better then holds it). While some accepted pose has more than max_explained_share
-/// of its pixels explained by others, the one with the largest such share (the lower confidence on
-/// a tie) is rejected, named after the pose explaining most of its pixels, and the shares are
-/// counted again. Does nothing when disabled. Returns the poses it rejected, in that order.
+/// by its object's map there, or, against another object's pose when the maps do not name objects
+/// (`maps_name_objects` false: maps from depth alone mark a region alike for every object of its
+/// size), by map x confidence: the pose that fits better holds it. While some accepted pose has
+/// more than max_explained_share of its pixels explained by others, the one with the largest such
+/// share (the lower confidence on a tie) is rejected, named after the pose explaining most of its
+/// pixels, and the shares are counted again. Does nothing when disabled. Returns the poses it
+/// rejected, in that order.
 std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
                                         const FreeSpaceCheck& visibility,
-                                        const FrameExplanationParams& params);
+                                        const FrameExplanationParams& params,
+                                        bool maps_name_objects = true);
 
 /// The pixels (CV_8UC1, 255) that the accepted poses of `poses` for which `counts` is true confirm,
 /// splatted as explainPoses claims them: the surface those poses explain.
