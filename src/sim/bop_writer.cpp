@@ -54,12 +54,19 @@ json perImage(const std::map<int, std::vector<Instance>>& by_image, const Entry&
   return j;
 }
 
+/// `o`'s mesh as its model file holds it: its own colours, or its plain colour at every vertex.
+MeshData colouredMesh(const CatalogueObject& o) {
+  MeshData mesh = o.mesh;
+  if (!mesh.hasColour()) mesh.colours.assign(mesh.vertices.size(), plainColour(o.id));
+  return mesh;
+}
+
 }  // namespace
 
 void writeModels(const fs::path& models_dir, const std::vector<CatalogueObject>& objects) {
   json info = json::object();
   for (const CatalogueObject& o : objects) {
-    writePly(models_dir / fmt::format("obj_{:06d}.ply", o.id), o.mesh, 1000.0f, 4);
+    writePly(models_dir / fmt::format("obj_{:06d}.ply", o.id), colouredMesh(o), 1000.0f, 4);
     Eigen::Vector3f lo = o.mesh.vertices.front(), hi = lo;
     for (const Eigen::Vector3f& v : o.mesh.vertices) {
       lo = lo.cwiseMin(v);

@@ -191,6 +191,13 @@ std::vector<CatalogueObject> lookalikeCatalogue() {
   return {smallBox(), can()};
 }
 
+Rgba plainColour(int id) {
+  static const Rgba palette[] = {{200, 50, 40, 255},  {40, 110, 190, 255}, {60, 170, 60, 255},
+                                 {220, 190, 40, 255}, {150, 60, 170, 255}, {230, 120, 30, 255},
+                                 {60, 160, 160, 255}, {60, 60, 120, 255}};
+  return palette[(id - 1) % 8];
+}
+
 const std::vector<std::string>& catalogueSelectionNames() {
   static const std::vector<std::string> names = {"standard", "textured", "all", "lookalike"};
   return names;

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "stocs/sim/depth_renderer.h"
+#include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/synthetic_frame.h"
 #include "stocs/util/error.h"
 #include "stocs/util/random.h"
@@ -16,12 +17,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Distinct colours (BGR) for object ids 1..8; later ids reuse them.
+/// The plain colour (BGR) of object `obj_id` (object_catalogue.h).
 cv::Vec3b objectColour(int obj_id) {
-  static const cv::Vec3b palette[] = {{40, 50, 200},  {190, 110, 40}, {60, 170, 60},
-                                      {40, 190, 220}, {170, 60, 150}, {30, 120, 230},
-                                      {160, 160, 60}, {120, 60, 60}};
-  return palette[(obj_id - 1) % 8];
+  const Rgba rgb = plainColour(obj_id);
+  return {rgb[2], rgb[1], rgb[0]};
 }
 
 BopGtInfo visibility(const cv::Mat& labels, int label, long silhouette_pixels) {

@@ -194,14 +194,16 @@ TEST(PackedBin, UnknownObjectAndSequencesAreRefused) {
                          "does not apply to a sequence");
 }
 
-/// FNV-1a over every file's relative path and bytes, in path order.
-std::string treeDigest(const fs::path& root) {
+/// FNV-1a over every file's relative path and bytes, in path order; paths starting with `skip`
+/// (when not empty) left out.
+std::string treeDigest(const fs::path& root, const std::string& skip = "") {
   uint64_t h = 0xcbf29ce484222325ull;
   const auto add = [&h](const std::string& bytes) {
     for (const char c : bytes) h = (h ^ static_cast<uint8_t>(c)) * 0x100000001b3ull;
     h = h * 0x100000001b3ull;  // the 0 byte that ends each part
   };
   for (const auto& [name, content] : test::treeFiles(root)) {
+    if (!skip.empty() && name.rfind(skip, 0) == 0) continue;
     add(name);
     add(content);
   }
@@ -212,7 +214,9 @@ std::string treeDigest(const fs::path& root) {
 
 TEST(LookalikeCatalogue, DefaultScenesAreUnchanged) {
   // Digests of `stocs synth --images 2 --objects 4 --distractors 1 --seed 7` (and `--catalogue
-  // textured --images 1 ... --seed 4`) as written before look-alikes and bins existed (5872bf1).
+  // textured --images 1 ... --seed 4`) as written before look-alikes and bins existed (5872bf1);
+  // the standard objects' model files have carried their plain colour since, so the first leaves
+  // models/ out (ObjectCatalogue.CommittedMeshesAreWhatTheGeneratorWrites checks those).
   SyntheticDatasetParams p;
   p.images_per_scene = 2;
   p.layout.objects = 4;
@@ -220,7 +224,7 @@ TEST(LookalikeCatalogue, DefaultScenesAreUnchanged) {
   p.seed = 7;
   const fs::path standard = test::scratchDir("default_digest");
   writeSyntheticDataset(standard, p);
-  EXPECT_EQ(treeDigest(standard), "9be47f9f60e14b07");
+  EXPECT_EQ(treeDigest(standard, "models/"), "8730d59b89bd7017");
   EXPECT_FALSE(fs::exists(lookalikesPath(standard)));
   p.images_per_scene = 1;
   p.seed = 4;

@@ -127,6 +127,34 @@ TEST(SyntheticDataset, GroundTruthPosesMatchTheDepthAndTheMasks) {
   }
 }
 
+/// Chromaticity (r and g over r + g + b) of an RGB colour.
+Eigen::Vector2f chromaticity(const Eigen::Vector3f& rgb) {
+  return Eigen::Vector2f(rgb[0], rgb[1]) / rgb.sum();
+}
+
+// The model files carry the colour the images show (a plain object's in every vertex), so that
+// colour evidence on generated scenes reads what a user's coloured meshes would give.
+TEST(SyntheticDataset, EachModelFileCarriesTheColourItsObjectShows) {
+  const fs::path root = test::scratchDir("synth_colours");
+  writeSyntheticDataset(root, smallDataset(5));
+  const BopDataset ds(root);
+  const cv::Mat rgb = cv::imread(ds.rgbPath(0, 0).string());
+  const std::vector<BopGtInstance> instances = ds.sceneGroundTruth(0).at(0);
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const MeshData model = loadMesh(ds.modelPath(instances[i].obj_id).string(), 0.001f);
+    ASSERT_EQ(model.colours.size(), model.vertices.size()) << "object " << instances[i].obj_id;
+    for (const Rgba& c : model.colours) ASSERT_EQ(c, model.colours.front());
+    const cv::Mat mask =
+        cv::imread(ds.maskVisibPath(0, 0, static_cast<int>(i)).string(), cv::IMREAD_GRAYSCALE);
+    if (cv::countNonZero(mask) < 100) continue;
+    const cv::Scalar bgr = cv::mean(rgb, mask);
+    const Eigen::Vector3f seen(bgr[2], bgr[1], bgr[0]);
+    const Eigen::Vector3f painted = model.colours.front().head<3>().cast<float>();
+    EXPECT_LT((chromaticity(seen) - chromaticity(painted)).cwiseAbs().sum(), 0.03f)
+        << "object " << instances[i].obj_id;
+  }
+}
+
 TEST(SyntheticDataset, ObjectsHideEachOtherInDefaultScenes) {
   const fs::path root = test::scratchDir("clutter");
   SyntheticDatasetParams params;

@@ -11,7 +11,8 @@
 
 namespace stocs {
 
-/// Writes each object as `obj_{id:06d}.ply` (mm, 0.1 um resolution) and `models_info.json`
+/// Writes each object as `obj_{id:06d}.ply` (mm, 0.1 um resolution; an object without colour in
+/// its plain colour, as the scenes show it) and `models_info.json`
 /// (diameter, bounding box and symmetries, mm) into `models_dir`, which must exist. The bytes
 /// depend only on the meshes, so regenerating gives the same files. Throws InputError naming a file
 /// that cannot be written.

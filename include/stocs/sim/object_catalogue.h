@@ -47,6 +47,11 @@ const std::vector<std::string>& catalogueSelectionNames();
 /// The objects of a selection; throws InputError naming the selections for an unknown name.
 std::vector<CatalogueObject> catalogueSelection(const std::string& name);
 
+/// The colour (RGB, alpha 255) object `id` is painted with where its mesh has none: eight distinct
+/// colours, later ids reuse them. The scenes show it and the written model files carry it, as a
+/// user's coloured meshes would.
+Rgba plainColour(int id);
+
 /// A 10 x 6 x 4 cm box with a 4 x 4 x 3 cm block on one corner of its top (origin at the centre of
 /// the large box): no symmetry, so every pose is distinguishable. Catalogue object 6, recentred.
 MeshData asymmetricMesh();
