@@ -215,6 +215,10 @@ std::map<int, BopObjectInfo> readModelsInfo(const fs::path& file) {
 fs::path BopDataset::modelPath(int obj_id) const {
   return root_ / "models" / fmt::format("obj_{:06d}.ply", obj_id);
 }
+bool BopDataset::hasModel(int obj_id) const {
+  std::error_code ec;
+  return fs::exists(modelPath(obj_id), ec);
+}
 fs::path BopDataset::depthPath(int scene_id, int im_id) const {
   return sceneDir(scene_id) / "depth" / fmt::format("{:06d}.png", im_id);
 }

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <map>
 #include <opencv2/core.hpp>
 #include <optional>
@@ -21,10 +20,7 @@ class GeometricProbabilitySource : public ProbabilitySource {
   std::string spec() const override { return "geometric"; }
   bool namesObjects() const override { return false; }  // every region of an object's size
 
-  bool available(int, int, int obj_id) const override {
-    std::error_code ec;
-    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
-  }
+  bool available(int, int, int obj_id) const override { return dataset_.hasModel(obj_id); }
 
   cv::Mat load(int scene_id, int im_id, int obj_id) const override {
     const ObjectLook& object = look(obj_id);

@@ -68,7 +68,8 @@ bool isNumber(const std::string& text) {
 void requireObjectIds(const std::string& file, const std::vector<std::string>& channels) {
   const std::string stem = "obj_";
   for (const std::string& name : channels) {
-    const bool model_stem = name.compare(0, stem.size(), stem) == 0 && isNumber(name.substr(4));
+    const bool model_stem =
+        name.compare(0, stem.size(), stem) == 0 && isNumber(name.substr(stem.size()));
     if (name != "-" && !isNumber(name) && !model_stem) {
       throw InputError(
           fmt::format("{}: channels names '{}'; for a BOP dataset name each channel's obj_id or "

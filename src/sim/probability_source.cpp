@@ -48,10 +48,7 @@ class WholeSceneSource : public ProbabilitySource {
   explicit WholeSceneSource(const BopDataset& dataset) : dataset_(dataset) {}
   std::string spec() const override { return "whole"; }
   bool namesObjects() const override { return false; }
-  bool available(int, int, int obj_id) const override {
-    std::error_code ec;
-    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
-  }
+  bool available(int, int, int obj_id) const override { return dataset_.hasModel(obj_id); }
   cv::Mat load(int scene_id, int im_id, int) const override {
     const std::pair<int, int> image{scene_id, im_id};
     if (image != image_) {  // the depth is read once per image, for its size
@@ -84,9 +81,8 @@ class SimulatedProbabilitySource : public ProbabilitySource {
   std::string spec() const override { return spec_; }
 
   bool available(int scene_id, int im_id, int obj_id) const override {
-    if (prefer_real_ && hasRealMap(dataset_, scene_id, im_id, obj_id)) return true;
-    std::error_code ec;
-    return std::filesystem::exists(dataset_.modelPath(obj_id), ec);
+    return (prefer_real_ && hasRealMap(dataset_, scene_id, im_id, obj_id)) ||
+           dataset_.hasModel(obj_id);
   }
 
   cv::Mat load(int scene_id, int im_id, int obj_id) const override {

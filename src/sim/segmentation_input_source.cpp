@@ -41,10 +41,9 @@ struct SourceSpec {
 
 /// Throws InputError for a box of a class the dataset has no model of.
 void checkBoxClasses(const FrameBoxes& boxes, const std::string& file, const BopDataset& dataset) {
-  std::error_code ec;
   for (const auto& [frame, detections] : boxes) {
     for (const BoxDetection& d : detections) {
-      if (!std::filesystem::exists(dataset.modelPath(d.class_id), ec)) {
+      if (!dataset.hasModel(d.class_id)) {
         throw InputError(fmt::format(
             "{}: scene {} image {} has a box of category_id {}, which is not an object of the "
             "dataset (no {})",
@@ -257,8 +256,7 @@ std::string SegmentationInputSource::spec() const {
 }
 
 bool SegmentationInputSource::available(int, int, int obj_id) const {
-  std::error_code ec;
-  return std::filesystem::exists(frames_->dataset().modelPath(obj_id), ec);
+  return frames_->dataset().hasModel(obj_id);
 }
 
 cv::Mat SegmentationInputSource::load(int scene_id, int im_id, int obj_id) const {

@@ -71,6 +71,8 @@ class BopDataset {
   std::map<int, BopObjectInfo> modelsInfo() const;
 
   std::filesystem::path modelPath(int obj_id) const;
+  /// Whether the object's model file exists (false, not a throw, where it cannot be checked).
+  bool hasModel(int obj_id) const;
   std::filesystem::path depthPath(int scene_id, int im_id) const;
   std::filesystem::path rgbPath(int scene_id, int im_id) const;
   /// The frame's colour image `rgb/{im:06d}.png`, else `.jpg`; empty when it has neither.
