@@ -110,6 +110,9 @@ foreach(form labels masks boxes)
   add_rostest(test/ros/segmentation_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA} form:=${form}
     DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 endforeach()
+# The same scene from depth alone (input.probability geometric).
+add_rostest(test/ros/geometric_playback.test ARGS data:=${STOCS_ROS_TEST_DATA}
+  DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/rutgers_dove_instances.test DEPENDENCIES test_scene_poses ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/lmo_cat_playback.test DEPENDENCIES test_node_outputs ${STOCS_ROS_TEST_DEPENDS})
 add_rostest(test/ros/bad_inputs.test ARGS data:=${STOCS_ROS_TEST_DATA}

@@ -1,7 +1,8 @@
 // Writes the generated data the ROS integration tests play: the one-image BOP dataset of the CLI
 // test (an asymmetric box at a known pose) and node configurations for it, one per input form; and
 // a copy with objects that are not in the frame, for the rejection test; and the demo's
-// configuration with each segmentation input form, for the generated scene.
+// configuration with each segmentation input form and with maps from the depth alone (geometric),
+// for the generated scene.
 //   make_test_data OUT_DIR DEMO_CONFIG
 #include <filesystem>
 #include <fstream>
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
   // The same with detection in every frame, for the explanation outside tracking.
   std::ofstream(out / "absent_detection.yaml") << kAbsentObjects << "tracking:\n  enabled: false\n";
   const std::string demo = stocs::readTextFile(argv[2]);
-  for (const char* form : {"labels", "masks", "boxes"}) {
+  for (const char* form : {"labels", "masks", "boxes", "geometric"}) {
     std::ofstream(out / (std::string("synth_scene_") + form + ".yaml"))
         << demo << "\ninput:\n  probability: " << form << "\n";
   }
