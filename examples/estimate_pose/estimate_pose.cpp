@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
 
     int missed = 0;
     for (const stocs::ObjectResult& r : estimator.estimate(frame)) {
-      if (!r.estimate.found) {
+      if (!r.estimate.found()) {
         std::cout << r.name << ": no pose\n";
         ++missed;
         continue;

@@ -9,7 +9,7 @@
 //   frame.probabilities["cat"] = probability;             // CV_32FC1 in [0, 1]
 //   frame.colour = bgr;              // optional: CV_8UC3, registered with the depth image
 //   for (const stocs::ObjectResult& r : estimator.estimate(frame))
-//     if (r.estimate.found) use(r.name, r.estimate.best().pose);  // model to camera, metres
+//     if (r.estimate.found()) use(r.name, r.estimate.best().pose);  // model to camera, metres
 
 #include <memory>
 #include <string>

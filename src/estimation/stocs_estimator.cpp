@@ -246,7 +246,6 @@ PoseEstimate StocsEstimator::search(const SoftSegment& segment, const FreeSpaceC
   if (params_.icp.enabled) result.stages.refinement += secondsSince(t);
   addConsensus(model_.model, proximity_.centre(),
                params_.instance_separation * model_.model.diameter, ranked, result);
-  result.setFound();
   result.seconds = secondsSince(start);
   return result;
 }

@@ -38,7 +38,6 @@ PoseEstimate BaselineMethod::estimate(const ObjectInput& in) {
                       ? refine(in.model->model, segment, h->pose, in.params->stocs)
                       : h->pose;
       result.instances.push_back(only);
-      result.setFound();
     }
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -160,7 +160,6 @@ class ObjectTracker::Step {
       e.instances.push_back(std::move(pose));
       out.states.push_back(TrackState::kUntracked);
     }
-    e.setFound();
     if (!out.detected && !out.searched && follower_) {
       e.segment_points = follower_->segment().size();
     }

@@ -137,12 +137,12 @@ TEST_P(BaselineTest, FindsTheRenderedPoseWithAndWithoutRefinement) {
   params.stocs.threads = 1;  // the two runs' scores are compared (see TheSameSeedGivesTheSamePose)
   params.stocs.icp.enabled = false;
   const PoseEstimate raw = method(GetParam()).estimate(input(params));
-  ASSERT_TRUE(raw.found);
+  ASSERT_TRUE(raw.found());
   EXPECT_LT(addsOf(raw), 0.10 * model_.model.diameter);
   EXPECT_GT(raw.best().score, 0.0);
   params.stocs.icp.enabled = true;
   const PoseEstimate refined = method(GetParam()).estimate(input(params));
-  ASSERT_TRUE(refined.found);
+  ASSERT_TRUE(refined.found());
   if (refinedPoseHeldToTheBar(GetParam())) {
     EXPECT_LT(addsOf(refined), 0.10 * model_.model.diameter);
   }
@@ -156,7 +156,7 @@ TEST_P(BaselineTest, TheSameSeedGivesTheSamePose) {
   params.stocs.threads = 1;
   const PoseEstimate first = method(GetParam()).estimate(input(params));
   const PoseEstimate second = method(GetParam()).estimate(input(params));
-  ASSERT_TRUE(first.found && second.found);
+  ASSERT_TRUE(first.found() && second.found());
   EXPECT_EQ(first.best().pose.matrix(), second.best().pose.matrix());
   EXPECT_EQ(first.best().score, second.best().score);
 }
@@ -166,22 +166,22 @@ TEST_P(BaselineTest, EmptyTinyOrInvalidScenesGiveNoPose) {
   const PipelineParams params = withSeed(1);
   const cv::Mat nothing(probability_.size(), CV_32FC1, cv::Scalar(0));
   const PoseEstimate empty = m.estimate(input(params, &nothing));
-  EXPECT_FALSE(empty.found);
+  EXPECT_FALSE(empty.found());
   EXPECT_EQ(empty.segment_points, 0u);
 
   // Three pixels: fewer points than a base needs.
   cv::Mat three = nothing.clone();
   three(cv::Rect(150, 110, 3, 1)).setTo(1.0f);
   const PoseEstimate tiny = m.estimate(input(params, &three));
-  EXPECT_FALSE(tiny.found);
+  EXPECT_FALSE(tiny.found());
   EXPECT_LT(tiny.segment_points, 4u);
 
   cv::Mat nan = probability_.clone();
   nan.setTo(std::numeric_limits<float>::quiet_NaN());
-  EXPECT_FALSE(m.estimate(input(params, &nan)).found);
+  EXPECT_FALSE(m.estimate(input(params, &nan)).found());
 
   const OrganizedCloud no_depth(camera_.width, camera_.height);  // every point NaN
-  EXPECT_FALSE(m.estimate(input(params, &probability_, &no_depth)).found);
+  EXPECT_FALSE(m.estimate(input(params, &probability_, &no_depth)).found());
 }
 
 TEST_P(BaselineTest, AFlatFaceOnSegmentNeverCrashes) {
@@ -196,7 +196,7 @@ TEST_P(BaselineTest, AFlatFaceOnSegmentNeverCrashes) {
   }
   const PoseEstimate r = method(GetParam()).estimate(input(withSeed(1), &probability_, &wall));
   EXPECT_GT(r.segment_points, 100u);
-  if (r.found) {
+  if (r.found()) {
     EXPECT_TRUE(r.best().pose.matrix().allFinite());
   }
 }
@@ -252,7 +252,7 @@ TEST_P(FourPcsInstancesTest, FindsOneOfSeveralInstancesInTheSegment) {
   PipelineParams params = withSeed(1, 30);
   params.stocs.icp.enabled = false;  // the search alone
   const PoseEstimate r = method(GetParam()).estimate(input(params, &probability, &cloud));
-  ASSERT_TRUE(r.found);
+  ASSERT_TRUE(r.found());
   double nearest = std::numeric_limits<double>::infinity();
   for (const Eigen::Isometry3f& t : truths) {
     nearest = std::min(nearest, addsOf(r, t));
@@ -271,7 +271,7 @@ TEST_P(FourPcsBudgetTest, ATimeBudgetStopsTheSearch) {
   PipelineParams params = withSeed(1, 100000);
   params.stocs.time_budget = 0.2;
   const PoseEstimate r = method(GetParam()).estimate(input(params));
-  EXPECT_TRUE(r.found);
+  EXPECT_TRUE(r.found());
   EXPECT_LT(r.seconds, 30.0);  // generous: bounds the stop, does not measure speed
 }
 
@@ -287,7 +287,7 @@ TEST_P(Open3dThreadsTest, LeavesTheProcessThreadCountAsItWas) {
   omp_set_num_threads(3);
   PipelineParams params = withSeed(1);
   params.stocs.threads = 1;
-  EXPECT_TRUE(method(GetParam()).estimate(input(params)).found);
+  EXPECT_TRUE(method(GetParam()).estimate(input(params)).found());
   EXPECT_EQ(omp_get_max_threads(), 3);
   omp_set_num_threads(before);
 }
@@ -323,7 +323,7 @@ TEST(PpfBaseline, KeepsOneTrainedDetectorPerModel) {
       in.model = &model;
       in.params = &params;
       const PoseEstimate r = ppf->estimate(in);
-      ASSERT_TRUE(r.found) << "round " << round;
+      ASSERT_TRUE(r.found()) << "round " << round;
       EXPECT_LT(addsError(model.model.points,
                           {r.best().pose.linear().cast<double>(),
                            r.best().pose.translation().cast<double>()},

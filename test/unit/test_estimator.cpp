@@ -49,7 +49,7 @@ TEST_F(EstimatorTest, FindsTheObjectOfAFrameWithAModelFromAFile) {
   ASSERT_EQ(results.size(), 1u);
   EXPECT_EQ(results[0].name, "block");
   const PoseEstimate& e = results[0].estimate;
-  ASSERT_TRUE(e.found);
+  ASSERT_TRUE(e.found());
   EXPECT_LT(adds(e, *estimator.model("block")), 0.1 * estimator.model("block")->model.diameter);
   EXPECT_GT(e.segment_points, 0u);
   EXPECT_GE(e.seconds, e.stages.segment);
@@ -66,7 +66,7 @@ TEST_F(EstimatorTest, EstimatorsShareAPreparedModelAndSkipObjectsWithoutAMap) {
   EXPECT_EQ(second.model("block"), first.model("block"));  // shared, not copied
   const std::vector<ObjectResult> results = second.estimate(frame_);
   ASSERT_EQ(results.size(), 1u);  // "other" has no map in the frame
-  EXPECT_TRUE(results[0].estimate.found);
+  EXPECT_TRUE(results[0].estimate.found());
 }
 
 TEST_F(EstimatorTest, BadRequestsAreNamed) {
@@ -161,7 +161,6 @@ TEST_F(EstimatorTest, AnObjectWhosePoseAnotherExplainsIsSearchedForAgainElsewher
       pose.pose = on_block ? truth_ : twin;
       pose.confidence = 0.9f;
     }
-    e.setFound();
     return e;
   };
   PipelineParams again;

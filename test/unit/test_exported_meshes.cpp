@@ -43,8 +43,8 @@ Eigen::Isometry3f estimateCat(const CatFrame& frame, const ModelCache& cache, co
   const PreparedModel prepared = cache.load(model.string(), unit_scale, params.model);
   const PoseEstimate r = detectObject(frame.cloud, frame.focal_px, frame.probability, prepared,
                                       params, frame.boundary.empty() ? nullptr : &frame.boundary);
-  EXPECT_TRUE(r.found) << model;
-  return r.found ? r.best().pose : Eigen::Isometry3f::Identity();
+  EXPECT_TRUE(r.found()) << model;
+  return r.found() ? r.best().pose : Eigen::Isometry3f::Identity();
 }
 
 /// Mean distance (mm) between the PLY's vertices placed by `ply_pose` and the same vertices,

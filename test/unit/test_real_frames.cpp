@@ -43,7 +43,7 @@ void expectNineOfTenSeeds(const std::filesystem::path& root, const Frame& f) {
     const PoseEstimate r = detectObject(cloud, static_cast<float>(k.fx), probability, model, p,
                                         boundary.empty() ? nullptr : &boundary);
     double best = 1e9;
-    if (r.found && r.instances.front().accepted) {  // a rejected pose is not published
+    if (r.found() && r.instances.front().accepted) {  // a rejected pose is not published
       const RigidPose est{r.best().pose.linear().cast<double>(),
                           r.best().pose.translation().cast<double>() * 1000};
       for (const BopGtInstance& g : truth) {
@@ -52,7 +52,8 @@ void expectNineOfTenSeeds(const std::filesystem::path& root, const Frame& f) {
     }
     successes += best < 0.1 * diameter;
     log += "seed " + std::to_string(seed) + ": ADD-S " + std::to_string(best) + " mm" +
-           (r.found ? ", confidence " + std::to_string(r.instances.front().confidence) : "") + "\n";
+           (r.found() ? ", confidence " + std::to_string(r.instances.front().confidence) : "") +
+           "\n";
   }
   EXPECT_GE(successes, 9) << f.dataset << " (diameter " << diameter << " mm)\n" << log;
 }

@@ -136,7 +136,7 @@ TEST(ShapeAlternatives, MugWithItsHandleInViewFacesTheRightWay) {
   const MugOnTable scene(static_cast<float>(M_PI) / 2);
   for (const uint64_t seed : {1u, 2u, 3u}) {
     const PoseEstimate e = scene.estimate(seed);
-    ASSERT_TRUE(e.found) << seed;
+    ASSERT_TRUE(e.found()) << seed;
     EXPECT_LT(scene.add(e.best().pose), 0.1f * scene.model.model.diameter) << seed;
     EXPECT_TRUE(e.best().ambiguous.empty()) << seed << ": " << ambiguityText(e.best().ambiguous);
   }
@@ -146,7 +146,7 @@ TEST(ShapeAlternatives, MugWithItsHandleHiddenIsNamedAmbiguous) {
   const MugOnTable scene(0);
   for (const uint64_t seed : {1u, 2u, 3u}) {
     const PoseEstimate e = scene.estimate(seed);
-    ASSERT_TRUE(e.found) << seed;
+    ASSERT_TRUE(e.found()) << seed;
     ASSERT_FALSE(e.best().ambiguous.empty()) << seed;
     for (const ShapeAlternative& a : e.best().ambiguous) {
       EXPECT_TRUE(aboutAxis(a, Eigen::Vector3f::UnitZ())) << a.axis.transpose();

@@ -66,7 +66,7 @@ TEST_F(StocsEstimatorTest, FindsTheRenderedPose) {
   for (uint64_t seed : {1u, 2u, 3u}) {
     params.stocs.seed = seed;
     const PoseEstimate r = estimate(params);
-    ASSERT_TRUE(r.found) << "seed " << seed;
+    ASSERT_TRUE(r.found()) << "seed " << seed;
     EXPECT_GT(r.segment_points, 100u);
     EXPECT_LT(addsOf(r), 0.05 * model_.model.diameter) << "seed " << seed;
     // The asymmetric block makes the pose unique: ADD (no symmetry forgiveness) is small too.
@@ -95,7 +95,7 @@ TEST_F(StocsEstimatorTest, FitsThatTurnTheModelOverAreNotScored) {
   // found is as good.
   EXPECT_GT(agreeing.normal_mismatches, 0);
   EXPECT_LT(agreeing.hypotheses, all.hypotheses);
-  ASSERT_TRUE(agreeing.found);
+  ASSERT_TRUE(agreeing.found());
   EXPECT_LT(addsOf(agreeing), 0.05 * model_.model.diameter);
 }
 
@@ -109,7 +109,7 @@ TEST_F(StocsEstimatorTest, OnlyTheBestHeadsOfABaseAreFinished) {
   EXPECT_EQ(every.finished, every.hypotheses);
   EXPECT_LE(best_two.finished, 2L * best_two.bases_with_sets);
   EXPECT_LT(best_two.finished, every.finished);
-  ASSERT_TRUE(best_two.found);
+  ASSERT_TRUE(best_two.found());
   EXPECT_LT(addsOf(best_two), 0.05 * model_.model.diameter);
 }
 
@@ -121,7 +121,7 @@ TEST_F(StocsEstimatorTest, SameSeedSameResultForAnyThreadCount) {
   params.stocs.threads = 2;
   const PoseEstimate two = StocsEstimator(model_, params.stocs).search(segment(params));
   const PoseEstimate again = StocsEstimator(model_, params.stocs).search(segment(params));
-  ASSERT_TRUE(one.found);
+  ASSERT_TRUE(one.found());
   EXPECT_EQ(one.best().pose.matrix(), two.best().pose.matrix());
   EXPECT_EQ(two.best().pose.matrix(), again.best().pose.matrix());
   EXPECT_EQ(one.best().lcp.score, two.best().lcp.score);
@@ -143,7 +143,7 @@ TEST_F(StocsEstimatorTest, RefinementsBegunDuringTheBaseLoopChangeNothing) {
     params.stocs.bases = bases;
     params.stocs.threads = 1;
     const PoseEstimate one = StocsEstimator(model_, params.stocs).search(seg);
-    ASSERT_TRUE(one.found) << bases;
+    ASSERT_TRUE(one.found()) << bases;
     EXPECT_TRUE(one.best().refined) << bases;
     EXPECT_GT(one.icp_steps, 0) << bases;
     for (int threads : {2, 3, 8}) {
@@ -165,7 +165,7 @@ TEST_F(StocsEstimatorTest, RefinementMovesTowardTheTruthAndKeepsTheObjective) {
   const PoseEstimate refined = StocsEstimator(model_, params.stocs).search(segment(params));
   params.stocs.icp.enabled = false;
   const PoseEstimate raw = StocsEstimator(model_, params.stocs).search(segment(params));
-  ASSERT_TRUE(refined.found && raw.found);
+  ASSERT_TRUE(refined.found() && raw.found());
   EXPECT_TRUE(refined.best().refined);
   EXPECT_FALSE(raw.best().refined);
   EXPECT_GE(refined.best().lcp.score, 0.9f * raw.best().lcp.score);  // the divergence guard
@@ -206,7 +206,7 @@ TEST_F(StocsEstimatorTest, IcpScreeningKeepsTheFinalists) {
   const PoseEstimate all_finalists = StocsEstimator(model_, params.stocs).search(seg);
   params.stocs.icp.finalists = 2;
   const PoseEstimate screened = StocsEstimator(model_, params.stocs).search(seg);
-  ASSERT_TRUE(full.found && all_finalists.found && screened.found);
+  ASSERT_TRUE(full.found() && all_finalists.found() && screened.found());
   EXPECT_EQ(all_finalists.best().pose.matrix(), full.best().pose.matrix());
   EXPECT_LT(addsOf(screened), 0.05 * model_.model.diameter);
   EXPECT_TRUE(screened.best().refined);
@@ -242,7 +242,7 @@ TEST_F(StocsEstimatorTest, ConsensusEndsTheLoopEarlyWithTheSameAnswerOnAnyThread
     const PoseEstimate one = StocsEstimator(model_, params.stocs).search(segment(params));
     params.stocs.threads = 2;
     const PoseEstimate two = StocsEstimator(model_, params.stocs).search(segment(params));
-    ASSERT_TRUE(one.found) << "seed " << seed;
+    ASSERT_TRUE(one.found()) << "seed " << seed;
     // The block is plainly visible: its bases agree long before the hundredth, and the loop ends
     // between whole blocks of bases.
     EXPECT_LT(one.bases_tried, params.stocs.bases) << "seed " << seed;
@@ -284,7 +284,7 @@ TEST_F(StocsEstimatorTest, BasesWithNothingToVerifyAreDrawnAgainWithinTheBudget)
   EXPECT_GT(again.base_draws, once.base_draws);
   EXPECT_LE(again.base_draws, 10 * params.stocs.bases);
   EXPECT_GT(again.bases_with_sets, once.bases_with_sets);
-  ASSERT_TRUE(again.found);
+  ASSERT_TRUE(again.found());
   params.stocs.threads = 2;  // the draws of a base come from its own stream
   EXPECT_EQ(StocsEstimator(model_, params.stocs).search(seg).best().pose.matrix(),
             again.best().pose.matrix());
@@ -326,7 +326,7 @@ TEST_F(StocsEstimatorTest, OnlyTheFirstBasesAreFocused) {
   const PoseEstimate every = run(20, 6);
   EXPECT_NE(first.hypotheses, paper.hypotheses);
   EXPECT_NE(first.hypotheses, every.hypotheses);
-  EXPECT_TRUE(first.found && every.found);
+  EXPECT_TRUE(first.found() && every.found());
 }
 
 // A caller that knows the frame's intrinsics passes them; intrinsics of another image size are an
@@ -337,7 +337,7 @@ TEST_F(StocsEstimatorTest, TheFramesIntrinsicsMustFitTheCloud) {
   const PoseEstimate recovered = detectObject(cloud_, focal, probability_, model_, params);
   const PoseEstimate given =
       detectObject(cloud_, focal, probability_, model_, params, nullptr, &camera_);
-  ASSERT_TRUE(given.found);
+  ASSERT_TRUE(given.found());
   EXPECT_LT(addsOf(given), 0.05 * model_.model.diameter);
   EXPECT_LT(addsOf(recovered), 0.05 * model_.model.diameter);
   CameraIntrinsics other = camera_;
@@ -358,10 +358,10 @@ TEST_F(StocsEstimatorTest, EmptyOrTinySegmentsGiveNoPose) {
   const PoseEstimate r =
       detectObject(cloud_, static_cast<float>(camera_.fx), nothing, model_, params);
   EXPECT_EQ(r.segment_points, 0u);
-  EXPECT_FALSE(r.found);
+  EXPECT_FALSE(r.found());
   const PoseEstimate nan_cloud = detectObject(
       OrganizedCloud(320, 240), static_cast<float>(camera_.fx), probability_, model_, params);
-  EXPECT_FALSE(nan_cloud.found);
+  EXPECT_FALSE(nan_cloud.found());
 }
 
 TEST(StocsEstimator, SeveralInstancesOfOneObjectAreReportedOnceEach) {

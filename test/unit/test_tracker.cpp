@@ -351,7 +351,6 @@ PoseEstimate detectionOf(const Eigen::Isometry3f& pose, ConfidenceEvidence evide
   p.confidence = params.confidence(evidence);
   p.accepted = true;
   e.instances.push_back(p);
-  e.setFound();
   return e;
 }
 

@@ -52,7 +52,6 @@ struct InstancePose {
 /// What the estimation of one object gives: its distinct poses with their objective, and what it
 /// took. Every method returns it (PoseMethod), StoCS fills every field.
 struct PoseEstimate {
-  bool found = false;  ///< there is a pose: `instances` is not empty
   /// Distinct poses, best first (by objective, then as the near-symmetry choice and the declared
   /// symmetries settle them), at most StocsParams::instances. The first is the object's pose: the
   /// one pose every output reports.
@@ -76,11 +75,11 @@ struct PoseEstimate {
   /// method's own steps (PoseMethod).
   double seconds = 0;
 
-  /// The object's pose (the first instance); only when `found`.
+  /// There is a pose: `instances` is not empty.
+  bool found() const { return !instances.empty(); }
+  /// The object's pose (the first instance); only when found().
   const InstancePose& best() const { return instances.front(); }
   InstancePose& best() { return instances.front(); }
-  /// Sets `found`: whether there is an instance.
-  void setFound();
 };
 
 }  // namespace stocs

@@ -47,7 +47,7 @@ struct EstimationJob {
 };
 
 struct ObjectOutcome {
-  size_t object;  ///< index into config.objects
+  size_t object = 0;  ///< index into config.objects
   stocs::PoseEstimate estimate;
   /// Per instance of `estimate` when it was tracked (trackJob); empty when detected.
   std::vector<stocs::TrackState> states;

@@ -17,7 +17,7 @@ std::string describeOutcome(const FrameResult& result, const NodeConfig& config)
   std::string missing;
   size_t found = 0;
   for (const ObjectOutcome& o : result.objects) {
-    if (o.estimate.found) {
+    if (o.estimate.found()) {
       ++found;
     } else {
       missing += (missing.empty() ? "" : ", ") + config.objects[o.object].name;

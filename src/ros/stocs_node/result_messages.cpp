@@ -113,7 +113,7 @@ std::vector<FoundPose> posesAccepted(const FrameResult& result, bool accepted) {
   std::vector<FoundPose> out;
   for (const ObjectOutcome& o : result.objects) {
     const stocs::PoseEstimate& e = o.estimate;
-    if (!e.found) continue;
+    if (!e.found()) continue;
     for (size_t k = 0; k < e.instances.size(); ++k) {
       if (e.instances[k].accepted == accepted) out.push_back({&o, k, e.instances[k]});
     }

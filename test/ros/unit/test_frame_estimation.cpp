@@ -62,7 +62,7 @@ class FrameEstimation : public ::testing::Test {
   void expectFoundNearTruth(const FrameResult& result) const {
     ASSERT_EQ(result.objects.size(), 1u);
     const stocs::PoseEstimate& e = result.objects[0].estimate;
-    ASSERT_TRUE(e.found);
+    ASSERT_TRUE(e.found());
     EXPECT_LT((e.best().pose.translation() - truth_.translation()).norm(), 0.005f);
     EXPECT_LT(Eigen::AngleAxisf(e.best().pose.linear().transpose() * truth_.linear()).angle(),
               0.05f);

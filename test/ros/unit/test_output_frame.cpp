@@ -14,7 +14,6 @@ TEST(OutputFrame, MovesEveryPoseAndRotatesItsCovariance) {
   // Uncertain along the camera's z (depth) and about its x.
   instance.covariance.diagonal() << 1e-6, 1e-6, 4e-4, 9e-2, 1e-4, 1e-4;
   o.estimate.instances = {instance, instance};
-  o.estimate.setFound();
   result.objects = {o};
 
   Eigen::Isometry3d base_from_camera = Eigen::Isometry3d::Identity();

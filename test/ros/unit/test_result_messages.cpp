@@ -40,7 +40,6 @@ ObjectOutcome outcome(size_t object, bool found, float x) {
     pose.score = 0.25f;
     o.estimate.instances.push_back(pose);
   }
-  o.estimate.setFound();
   o.estimate.hypotheses = 42;
   o.estimate.seconds = 0.5;
   return o;
@@ -99,7 +98,6 @@ TEST(ResultMessages, MarkersShowFoundObjectsAndDeleteStaleOnes) {
 
   FrameResult only_can = both;
   only_can.objects[0].estimate.instances.clear();
-  only_can.objects[0].estimate.setFound();
   const visualization_msgs::MarkerArray second = toMarkers(only_can, setup, shown);
   ASSERT_EQ(second.markers.size(), 6u);
   std::set<MarkerKey> deleted;
@@ -194,7 +192,6 @@ ObjectOutcome withInstances(size_t object, int count) {
     p.confidence = 0.9f - 0.1f * k;
     o.estimate.instances.push_back(p);
   }
-  o.estimate.setFound();
   return o;
 }
 

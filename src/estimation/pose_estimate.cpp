@@ -1,9 +1,0 @@
-#include "stocs/estimation/pose_estimate.h"
-
-namespace stocs {
-
-void PoseEstimate::setFound() {
-  found = !instances.empty();
-}
-
-}  // namespace stocs
