@@ -51,24 +51,6 @@ RigidPose toBop(const Eigen::Isometry3f& pose) {
   return {pose.linear().cast<double>(), pose.translation().cast<double>() * 1000.0};
 }
 
-/// The ground-truth instance of the object nearest to a pose by ADD-S.
-struct NearestInstance {
-  int index = -1;    ///< into the image's instances; -1 when the object has none
-  double adds = -1;  ///< mm
-};
-
-NearestInstance nearestInstance(const std::vector<Eigen::Vector3f>& points_mm,
-                                const RigidPose& estimate,
-                                const std::vector<BopGtInstance>& instances, int obj_id) {
-  NearestInstance best;
-  for (size_t i = 0; i < instances.size(); ++i) {
-    if (instances[i].obj_id != obj_id) continue;
-    const double e = addsError(points_mm, estimate, RigidPose{instances[i].R, instances[i].t_mm});
-    if (best.index < 0 || e < best.adds) best = {static_cast<int>(i), e};
-  }
-  return best;
-}
-
 /// The options' parameters for `method`: the frame-level explanation ranks poses by their
 /// confidence, so only a method that gives one is explained.
 PipelineParams frameParams(PipelineParams params, const PoseMethod& method) {
@@ -295,17 +277,17 @@ class EstimateRun {
       const PoseEstimate& e = t.estimate;
       ++targets_;
       object_runs_.push_back({{image.scene, image.im, t.obj},
-                              e.found,
+                              e.found(),
                               e.seconds,
                               t.cpu_seconds,
                               e.segment_points,
                               e.hypotheses,
-                              e.found ? e.instances.front().evidence : ConfidenceEvidence{},
-                              e.found ? e.instances.front().confidence : 0.0f});
-      if (e.found) object_runs_.back().covariance = e.instances.front().covariance;
+                              e.found() ? e.instances.front().evidence : ConfidenceEvidence{},
+                              e.found() ? e.instances.front().confidence : 0.0f});
+      if (e.found()) object_runs_.back().covariance = e.instances.front().covariance;
       const std::string head = fmt::format("scene {} image {} object {}: segment {} points, ",
                                            image.scene, image.im, t.obj, e.segment_points);
-      if (!e.found) {
+      if (!e.found()) {
         fmt::print(stderr, "{}no pose found ({:.3f} s)\n", head, e.seconds);
         continue;
       }
@@ -314,15 +296,19 @@ class EstimateRun {
     }
   }
 
-  /// The object's poses as result rows, described with their ADD-S to the nearest instance.
+  /// The object's poses as result rows, described by `stocs eval`'s measures (the model file's
+  /// vertices) against the nearest ground-truth instance.
   std::string describePoses(const ImageTargets& image, const TimedResult& t,
                             const PoseEstimate& e) {
     const int obj = t.obj;
     const std::vector<BopGtInstance>& instances = *image.instances;
-    const auto it = info_.find(obj);
-    const double diameter = it != info_.end() ? it->second.diameter_mm : 0;
-    std::vector<Eigen::Vector3f> points_mm;  // once for all poses of the target
-    for (const Eigen::Vector3f& p : models_.at(obj).model.points) points_mm.push_back(p * 1000.0f);
+    std::vector<RigidPose> truths;  // the object's instances, and their indices in the image's
+    std::vector<int> truth_index;
+    for (size_t i = 0; i < instances.size(); ++i) {
+      if (instances[i].obj_id != obj) continue;
+      truths.push_back({instances[i].R, instances[i].t_mm});
+      truth_index.push_back(static_cast<int>(i));
+    }
     std::set<int> recalled;  // ground-truth instances within ADD-S 10% of the diameter
     std::string line;
     for (size_t k = 0; k < e.instances.size(); ++k) {
@@ -345,17 +331,17 @@ class EstimateRun {
                             pose.R, pose.t, image_seconds_});
       }
       if (k == 0) line += fmt::format(", {} hypotheses, {:.3f} s", e.hypotheses, e.seconds);
-      const NearestInstance near = nearestInstance(points_mm, pose, instances, obj);
-      if (near.index < 0 || diameter <= 0) continue;
-      line += fmt::format(", ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}", near.adds,
-                          100.0 * near.adds / diameter, near.index);
-      if (near.adds < 0.1 * diameter) recalled.insert(near.index);
+      if (truths.empty()) continue;
+      const TargetErrors errors = evaluator_.object(obj).evaluate(&pose, truths);
+      const int near = truth_index[static_cast<size_t>(errors.instance)];
+      line += fmt::format(
+          ", ADD(-S) {:.1f} mm, ADD-S {:.1f} mm ({:.1f}% of diameter) to instance {}",
+          errors.addOrAddsMm(), errors.adds_mm, 100.0 * errors.adds_mm / errors.diameter_mm, near);
+      if (errors.addsSuccess()) recalled.insert(near);
     }
-    const auto truths = std::count_if(instances.begin(), instances.end(),
-                                      [&](const BopGtInstance& g) { return g.obj_id == obj; });
-    if (e.instances.size() > 1 && truths > 0) {
+    if (e.instances.size() > 1 && !truths.empty()) {
       line += fmt::format("\n  instance recall {} of {} ground-truth instances", recalled.size(),
-                          truths);
+                          truths.size());
     }
     return line;
   }
@@ -367,6 +353,7 @@ class EstimateRun {
   const std::unique_ptr<ProbabilitySource> probabilities_;
   const std::map<int, BopObjectInfo> info_;
   const ModelCache cache_;
+  DatasetEvaluator evaluator_{dataset_};  // the log's errors, as `stocs eval` measures them
   bool warm_up_;
   std::map<int, PreparedModel> models_;
   std::vector<BopResult> results_;
