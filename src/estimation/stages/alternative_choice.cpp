@@ -26,15 +26,38 @@ struct Candidate {
   LcpDetail lcp;
   float free = 0;         ///< share of the visible surface in free space
   float unexplained = 0;  ///< share of the segment (by network probability) far from the surface
+  /// Where the measured surface confirms its visible surface: one pixel per cell (onePerCell).
+  std::vector<int> confirmed;
+  float left_out = 0;  ///< the confirmed surface it leaves out, as a share of its own (leftOut)
   ColourAgreement colour;
   float judgement = 0;  ///< higher is better
 };
 
-constexpr size_t kExplainedPoints = 300;  // segment points checked, an even subsample
+/// Shape alternatives fit the segment's shape alike by construction, so their objectives differ by
+/// ICP's noise, which would drown the colour's evidence: the objective only rules out an
+/// alternative that fits clearly worse than the instance (below this share of its objective).
+constexpr float kFitFloor = 0.9f;
+
+bool fits(const Candidate& c, const Candidate& instance) {
+  return c.lcp.score >= kFitFloor * instance.lcp.score;
+}
+
+/// Measured surface that some candidate's visible surface meets (CandidateMeasure).
+struct ConfirmedSurface {
+  std::vector<Eigen::Vector3f> points;  ///< one per cell of an even subsample, camera frame
+  size_t cells = 0;                     ///< that `points` stand for
+};
+
+/// Confirmed surface is counted in square cells of this many pixels a side: candidates turned
+/// alike sample one surface at different pixels, and the cells count it once.
+constexpr int kCellPixels = 4;
+
+constexpr size_t kExplainedPoints = 300;  // segment or surface points checked, an even subsample
 
 /// What the data says of a candidate pose: the segment's shape under it (objective), the measured
-/// surface (free space), and the segment points it leaves unexplained (a handle seen where the
-/// pose has none).
+/// surface (free space), the segment points it leaves unexplained (a handle seen where the pose
+/// has none), and the measured surface that another candidate's surface meets but its own does
+/// not (a handle seen outside the segment, where a candidate turned the right way puts its own).
 class CandidateMeasure {
  public:
   CandidateMeasure(const SoftSegment& segment, const RefinementContext& context,
@@ -52,23 +75,95 @@ class CandidateMeasure {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
     c.unexplained = unexplained(c.pose, region);
     if (evidence_.surface) {
-      c.free = evidence_.surface->violation(context_.model, c.pose);
+      const SurfaceComparison seen = confirm(c);
+      c.free =
+          seen.seen == 0 ? 0.0f : static_cast<float>(seen.free) / static_cast<float>(seen.seen);
       c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
     }
   }
 
+  /// The measured surface in the cells where the surface of a candidate that fits (kFitFloor) is
+  /// confirmed.
+  ConfirmedSurface confirmedSurface(const std::vector<Candidate>& candidates) const {
+    if (!evidence_.surface) return {};
+    std::vector<int> pixels;
+    for (const Candidate& c : candidates) {
+      if (fits(c, candidates.front())) {
+        pixels.insert(pixels.end(), c.confirmed.begin(), c.confirmed.end());
+      }
+    }
+    pixels = onePerCell(std::move(pixels));
+    ConfirmedSurface out;
+    out.cells = pixels.size();
+    const size_t stride = std::max<size_t>(1, pixels.size() / kExplainedPoints);
+    for (size_t k = 0; k < pixels.size(); k += stride) {
+      out.points.push_back(evidence_.surface->cloud().points[static_cast<size_t>(pixels[k])]);
+    }
+    return out;
+  }
+
+  /// The cells of `surface` farther than the LCP distance from `c`'s model surface, as a share of
+  /// the cells where `c`'s own surface is confirmed (at most 1): a turn that hides the handle the
+  /// sensor sees, which another turn's confirmed surface holds. Shares below kAlternativeTie are
+  /// the noise of the candidates' outlines and count 0.
+  float leftOut(const Candidate& c, const ConfirmedSurface& surface) const {
+    if (surface.points.empty()) return 0;
+    size_t far = 0;
+    const Eigen::Isometry3f to_model = c.pose.inverse();
+    for (const Eigen::Vector3f& p : surface.points) far += !nearModel(to_model * p);
+    const double left_out = static_cast<double>(far) / static_cast<double>(surface.points.size()) *
+                            static_cast<double>(surface.cells);
+    const double share =
+        std::min(1.0, left_out / static_cast<double>(std::max<size_t>(1, c.confirmed.size())));
+    return share < kAlternativeTie ? 0.0f : static_cast<float>(share);
+  }
+
  private:
-  float unexplained(const Eigen::Isometry3f& pose, int region) const {
-    const Eigen::Isometry3f to_model = pose.inverse();
+  /// Compares `c`'s visible surface with the measured one, keeping the confirmed cells.
+  SurfaceComparison confirm(Candidate& c) const {
+    SurfaceComparison seen;
+    const int width = evidence_.surface->cloud().width;
+    std::vector<int> confirmed;
+    evidence_.surface->visit(context_.model, c.pose, [&](size_t, int u, int v, SampleView view) {
+      ++seen.seen;
+      seen.free += view == SampleView::kFree;
+      if (view == SampleView::kConfirmed) confirmed.push_back(v * width + u);
+    });
+    c.confirmed = onePerCell(std::move(confirmed));
+    return seen;
+  }
+
+  /// `pixels` (indices into the cloud) with one pixel kept per cell, in the cells' order.
+  std::vector<int> onePerCell(std::vector<int> pixels) const {
+    const int width = evidence_.surface->cloud().width;
+    const auto cell = [&](int pixel) {
+      return (pixel / width / kCellPixels) * (width / kCellPixels + 1) +
+             pixel % width / kCellPixels;
+    };
+    std::sort(pixels.begin(), pixels.end(), [&](int a, int b) {
+      return std::make_pair(cell(a), a) < std::make_pair(cell(b), b);
+    });
+    pixels.erase(
+        std::unique(pixels.begin(), pixels.end(), [&](int a, int b) { return cell(a) == cell(b); }),
+        pixels.end());
+    return pixels;
+  }
+
+  bool nearModel(const Eigen::Vector3f& in_model) const {
     std::vector<size_t> nearest;
     std::vector<float> squared;
+    model_index_.knn(in_model, 1, nearest, squared);
+    return !nearest.empty() && squared[0] <= reach_ * reach_;
+  }
+
+  float unexplained(const Eigen::Isometry3f& pose, int region) const {
+    const Eigen::Isometry3f to_model = pose.inverse();
     double far = 0, all = 0;
     for (const size_t i : checked_) {
       if (region >= 0 && !segment_.region.empty() && segment_.region[i] != region) continue;
-      model_index_.knn(to_model * segment_.points[i], 1, nearest, squared);
       const float weight = segment_.confidence[i];
       all += weight;
-      if (nearest.empty() || squared[0] > reach_ * reach_) far += weight;
+      if (!nearModel(to_model * segment_.points[i])) far += weight;
     }
     return all > 0 ? static_cast<float>(far / all) : 0;
   }
@@ -108,21 +203,15 @@ void refine(Candidate& c, int region, int steps, const RefinementContext& contex
   c.pose = c.run->pose;
 }
 
-/// Shape alternatives fit the segment's shape alike by construction, so their objectives differ by
-/// ICP's noise, which would drown the colour's evidence: the objective only rules out an
-/// alternative that fits clearly worse than the instance (below this share of its objective).
-constexpr float kFitFloor = 0.9f;
-
-/// The candidates' judgements (the instance first): less the shares in free space and left
-/// unexplained, plus the colour agreement where every candidate has colour evidence; -1 for an
-/// alternative below kFitFloor.
+/// The candidates' judgements (the instance first): less the shares in free space, of the segment
+/// left unexplained and of the confirmed surface left out, plus the colour agreement where every
+/// candidate has colour evidence; -1 for an alternative below kFitFloor.
 void judge(std::vector<Candidate>& candidates) {
-  const float floor = kFitFloor * candidates.front().lcp.score;
   const bool coloured = std::all_of(candidates.begin(), candidates.end(),
                                     [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
-    c.judgement = (c.lcp.score >= floor ? 0.0f : -1.0f) - c.free - c.unexplained +
-                  (coloured ? c.colour.agreement : 0);
+    c.judgement = (fits(c, candidates.front()) ? 0.0f : -1.0f) - c.free - c.unexplained -
+                  c.left_out + (coloured ? c.colour.agreement : 0);
   }
 }
 
@@ -186,6 +275,10 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     if (k > 0) refine(candidates[k], instance.region, screening, context, taken);  // 0 is refined
     measure(candidates[k], instance.region);
   }
+  const ConfirmedSurface surface = measure.confirmedSurface(candidates);
+  for (Candidate& c : candidates) {
+    if (fits(c, candidates.front())) c.left_out = measure.leftOut(c, surface);  // else judged -1
+  }
   judge(candidates);
   size_t kept = chosen(candidates);
   if (kept > 0 && context.icp) {
@@ -193,6 +286,7 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     // still be better than the instance.
     refine(candidates[kept], instance.region, context.icp->params().iterations, context, taken);
     measure(candidates[kept], instance.region);
+    candidates[kept].left_out = measure.leftOut(candidates[kept], surface);
     judge(candidates);
     if (candidates[kept].judgement <= candidates.front().judgement) kept = 0;
   }

@@ -18,9 +18,10 @@ constexpr float kAlternativeTie = 0.03f;
 
 /// Each instance against its model's shape alternatives (less the declared symmetries): every
 /// alternative pose refined by ICP; the instance and the alternatives whose objective is within a
-/// tenth of the instance's (the shape fits them alike) judged by their colour agreement (colour_agreement.h, where every
-/// candidate has colour evidence) less the share of their visible surface in free space and the
-/// share of the segment they leave unexplained. An alternative
+/// tenth of the instance's (the shape fits them alike) judged by their colour agreement
+/// (colour_agreement.h, where every candidate has colour evidence) less the share of their visible
+/// surface in free space, the share of the segment they leave unexplained and the share of the
+/// measured surface confirmed under another candidate that they leave out. An alternative
 /// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
 /// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
 /// and its covariance spans them. Adds the ICP steps taken to `steps`.

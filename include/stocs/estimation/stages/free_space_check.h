@@ -73,6 +73,7 @@ class FreeSpaceCheck {
   void visit(const ObjectModel& model, const Eigen::Isometry3f& pose, F&& f) const;
 
   const CameraIntrinsics& camera() const { return camera_; }
+  const OrganizedCloud& cloud() const { return cloud_; }
 
  private:
   const OrganizedCloud& cloud_;
