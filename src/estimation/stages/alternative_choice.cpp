@@ -75,9 +75,7 @@ class CandidateMeasure {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
     c.unexplained = unexplained(c.pose, region);
     if (evidence_.surface) {
-      const SurfaceComparison seen = confirm(c);
-      c.free =
-          seen.seen == 0 ? 0.0f : static_cast<float>(seen.free) / static_cast<float>(seen.seen);
+      compareSurface(c);
       c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
     }
   }
@@ -119,18 +117,19 @@ class CandidateMeasure {
   }
 
  private:
-  /// Compares `c`'s visible surface with the measured one, keeping the confirmed cells.
-  SurfaceComparison confirm(Candidate& c) const {
-    SurfaceComparison seen;
+  /// `c`'s visible surface against the measured one: its share in free space and its confirmed
+  /// cells.
+  void compareSurface(Candidate& c) const {
     const int width = evidence_.surface->cloud().width;
+    int seen = 0, free = 0;
     std::vector<int> confirmed;
     evidence_.surface->visit(context_.model, c.pose, [&](size_t, int u, int v, SampleView view) {
-      ++seen.seen;
-      seen.free += view == SampleView::kFree;
+      ++seen;
+      free += view == SampleView::kFree;
       if (view == SampleView::kConfirmed) confirmed.push_back(v * width + u);
     });
+    c.free = seen == 0 ? 0.0f : static_cast<float>(free) / static_cast<float>(seen);
     c.confirmed = onePerCell(std::move(confirmed));
-    return seen;
   }
 
   /// `pixels` (indices into the cloud) with one pixel kept per cell, in the cells' order.
