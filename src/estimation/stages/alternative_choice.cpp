@@ -34,12 +34,24 @@ struct Candidate {
 };
 
 /// Shape alternatives fit the segment's shape alike by construction, so their objectives differ by
-/// ICP's noise, which would drown the colour's evidence: the objective only rules out an
-/// alternative that fits clearly worse than the instance (below this share of its objective).
+/// ICP's noise, which would drown the colour's evidence: the fit only rules out an alternative
+/// that fits clearly worse than the instance (below this share of its objective and of its
+/// ranking).
 constexpr float kFitFloor = 0.9f;
 
+/// The estimator's ranking of a pose (StocsEstimator::search): its objective times the share of its
+/// visible surface not in free space.
+float ranking(const Candidate& c) {
+  return c.lcp.score * (1 - c.free);
+}
+
+/// Within the floor by ranking: a turn that explains a little less of the segment but puts no
+/// handle over the table the camera sees fits as the estimator ranks poses. Or by objective alone:
+/// a screened alternative's free share is that of a pose ICP has not settled yet (a flipped box
+/// still off its face).
 bool fits(const Candidate& c, const Candidate& instance) {
-  return c.lcp.score >= kFitFloor * instance.lcp.score;
+  return c.lcp.score >= kFitFloor * instance.lcp.score ||
+         ranking(c) >= kFitFloor * ranking(instance);
 }
 
 /// Measured surface that some candidate's visible surface meets (CandidateMeasure).
