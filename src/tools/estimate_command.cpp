@@ -84,7 +84,6 @@ class EstimateRun {
         params_(frameParams(o.params, *method_)),
         dataset_(o.dataset, o.split),
         probabilities_(makeProbabilitySource(o.prob, dataset_, o.params.stocs.seed)),
-        info_(dataset_.modelsInfo()),
         cache_(o.model.cache()),
         warm_up_(o.warm_up) {
     if (o.tracking.enabled) tracker_.emplace(o.tracking);
@@ -170,7 +169,7 @@ class EstimateRun {
     CacheReport report;
     PreparedModel& m = models_[obj] = cache_.load(dataset_.modelPath(obj).string(),
                                                   o_.model.unit_scale, o_.params.model, &report);
-    if (const auto info = info_.find(obj); info != info_.end()) {
+    if (const auto info = evaluator_.info().find(obj); info != evaluator_.info().end()) {
       m.symmetries = info->second.symmetries();
     }
     fmt::print(stderr, "model {}: {} samples, PPF map {:.2f} MB, {}{}\n", obj, m.model.size(),
@@ -351,9 +350,9 @@ class EstimateRun {
   const PipelineParams params_;  // the estimation's, as frameParams gives them
   const BopDataset dataset_;
   const std::unique_ptr<ProbabilitySource> probabilities_;
-  const std::map<int, BopObjectInfo> info_;
   const ModelCache cache_;
-  DatasetEvaluator evaluator_{dataset_};  // the log's errors, as `stocs eval` measures them
+  /// The log's errors, as `stocs eval` measures them, and the models' declared symmetries.
+  DatasetEvaluator evaluator_{dataset_};
   bool warm_up_;
   std::map<int, PreparedModel> models_;
   std::vector<BopResult> results_;

@@ -74,6 +74,9 @@ class DatasetEvaluator {
   /// for an object without a model file.
   const ObjectMetrics& object(int obj_id);
 
+  /// The dataset's models_info.json, by object id.
+  const std::map<int, BopObjectInfo>& info() const { return info_; }
+
  private:
   const std::vector<BopGtInstance>& groundTruth(int scene_id, int im_id);
   /// The result of an absent target with its row (nullptr: none, the right answer).
