@@ -11,36 +11,20 @@ of `stocs estimate --track true` on it (the highest-scoring row per frame and ob
 published pose). Pairs count where both frames have a pose and the ground truth one instance of
 the object. Prints a line per object: pairs off, pairs, worst share of the diameter, the frames off.
 """
-import csv
 import json
 import sys
 
 import numpy as np
 
+from lookalike_metrics import ply_vertices, results_as_poses
+
 OFF = 0.05  # share of the diameter
-
-
-def vertices(path):
-    """The vertices of an ASCII PLY (stocs synth writes its models so)."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    count = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
-    start = lines.index("end_header") + 1
-    return np.array([[float(v) for v in lines[start + i].split()[:3]] for i in range(count)])
 
 
 def published(path):
     """(object, frame) -> (R, t) of the highest-scoring row."""
-    best = {}
-    with open(path) as f:
-        for row in csv.DictReader(f):
-            key = (int(row["obj_id"]), int(row["im_id"]))
-            score = float(row["score"])
-            if key not in best or score > best[key][0]:
-                rotation = np.array([float(v) for v in row["R"].split()]).reshape(3, 3)
-                translation = np.array([float(v) for v in row["t"].split()])
-                best[key] = (score, rotation, translation)
-    return {k: v[1:] for k, v in best.items()}
+    return {(obj, im): max(rows, key=lambda row: row[0])[1:3]
+            for (_, im, obj), rows in results_as_poses(path).items()}
 
 
 def main(dataset, results):
@@ -55,7 +39,7 @@ def main(dataset, results):
         return np.array(found[0]["cam_R_m2c"]).reshape(3, 3), np.array(found[0]["cam_t_m2c"])
 
     for obj in sorted({k[0] for k in poses}):
-        model = vertices(f"{dataset}/models/obj_{obj:06d}.ply")
+        model = ply_vertices(f"{dataset}/models/obj_{obj:06d}.ply")
         diameter = info[str(obj)]["diameter"]
         pairs, off, worst = 0, [], 0.0
         for frame in sorted(k[1] for k in poses if k[0] == obj):
