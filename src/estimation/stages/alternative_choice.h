@@ -17,8 +17,9 @@ namespace stocs {
 constexpr float kAlternativeTie = 0.03f;
 
 /// Each instance against its model's shape alternatives (less the declared symmetries): every
-/// alternative pose refined by ICP; the instance and the alternatives whose objective is within a
-/// tenth of the instance's (the shape fits them alike) judged by their colour agreement
+/// alternative pose refined by ICP; the instance and the alternatives whose objective, or ranking
+/// (objective times the share not in free space), is within a tenth of the instance's (the shape
+/// fits them alike) judged by their colour agreement
 /// (colour_agreement.h, where every candidate has colour evidence) less the share of their visible
 /// surface in free space, the share of the segment they leave unexplained and the share of the
 /// measured surface confirmed under another candidate that they leave out. An alternative
