@@ -1,5 +1,6 @@
 #include "alternative_choice.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <optional>
 
@@ -248,11 +249,10 @@ size_t chosen(const std::vector<Candidate>& candidates) {
              : 0;
 }
 
-/// The candidates that fit as well as `best`, as motions from it: each a pose of its own (not
-/// `best` again after refinement, not a declared symmetry of it, not one listed before).
-std::vector<ShapeAlternative> equallyFitting(const std::vector<Candidate>& candidates,
-                                             const Candidate& best, const PreparedModel& model) {
-  std::vector<ShapeAlternative> out;
+/// Adds to `out` the candidates that fit as well as `best`, as motions from it: each a pose of its
+/// own (not `best` again after refinement, not a declared symmetry of it, not one listed before).
+void addEquallyFitting(const std::vector<Candidate>& candidates, const Candidate& best,
+                       const PreparedModel& model, std::vector<ShapeAlternative>& out) {
   const Eigen::Vector3f centre = sampleCentre(model.model);
   const float distance = model.model.sampling_radius;
   for (const Candidate& c : candidates) {
@@ -266,7 +266,99 @@ std::vector<ShapeAlternative> equallyFitting(const std::vector<Candidate>& candi
     });
     if (!listed) out.push_back(a);
   }
-  return out;
+}
+
+/// A lathe's body (a mug's) turns onto itself by any angle, so its alternatives come in steps about
+/// one axis: a turn below this angle and its double.
+const float kLatheStep = 45.0f * static_cast<float>(M_PI) / 180.0f;
+/// The turns between a lathe's steps that are judged, as a share of the step either way.
+constexpr float kBetweenSteps = 2.0f / 3.0f;
+
+/// Whether `a` is a lathe's step among `alternatives`: below kLatheStep, and its double about the
+/// same axis is there too.
+bool latheStep(const ShapeAlternative& a,
+               const std::vector<const ShapeAlternative*>& alternatives) {
+  if (a.angle >= kLatheStep) return false;
+  return std::any_of(alternatives.begin(), alternatives.end(), [&](const ShapeAlternative* b) {
+    return b->axis.dot(a.axis) > std::cos(kDistinctAngle) &&
+           std::abs(b->angle - 2 * a.angle) < kDistinctAngle;
+  });
+}
+
+/// A turn about an axis line, camera frame, sliding along it by `pitch` metres per radian.
+struct Screw {
+  Eigen::Vector3d point, axis;  ///< on the line; unit
+  double pitch = 0;
+
+  Eigen::Isometry3f by(double angle) const {
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.linear() = Eigen::AngleAxisd(angle, axis).matrix();
+    turn.translation() = point - turn.linear() * point + angle * pitch * axis;
+    return turn.cast<float>();
+  }
+};
+
+/// The turn of `system`'s pose that its measured surface constrains least: the rotation-led
+/// eigenvector of the normal equations with the smallest eigenvalue, rotation scaled by `radius`
+/// to a length (a slide along a mug's axis may be freer still). Hidden parts add no rows: a mug's
+/// body seen without its handle turns freely about its axis.
+std::optional<Screw> leastConstrainedTurn(const PointToPlaneSystem& system, double radius) {
+  if (system.used <= 6 || radius <= 0) return std::nullopt;
+  Eigen::Matrix<double, 6, 1> scale;
+  scale << Eigen::Vector3d::Constant(1 / radius), Eigen::Vector3d::Ones();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(
+      scale.asDiagonal() * system.jtj * scale.asDiagonal());
+  if (eigen.info() != Eigen::Success) return std::nullopt;
+  for (int k = 0; k < 6; ++k) {  // eigenvalues ascend
+    const Eigen::Matrix<double, 6, 1> motion = eigen.eigenvectors().col(k);
+    if (motion.head<3>().norm() <= motion.tail<3>().norm()) continue;  // a slide
+    // Velocity w x (p - centre) + v: a turn about the line through centre + (w x v) / |w|^2.
+    const Eigen::Vector3d w = motion.head<3>() / radius, v = motion.tail<3>();
+    return Screw{system.centre + w.cross(v) / w.squaredNorm(), w.normalized(),
+                 w.dot(v) / w.squaredNorm()};
+  }
+  return std::nullopt;
+}
+
+/// `best` turned either way about the turn its measured surface constrains least by kBetweenSteps
+/// of the model's lathe step among `alternatives`, if it has one: a mug's handle straight behind
+/// its body stays hidden over a range of turns, not only at the steps, and those turns fit as well
+/// as `best`.
+std::vector<Candidate> turnsBetweenSteps(const Candidate& best,
+                                         const std::vector<const ShapeAlternative*>& alternatives,
+                                         const RefinementContext& context, int region) {
+  const auto step =
+      std::find_if(alternatives.begin(), alternatives.end(),
+                   [&](const ShapeAlternative* a) { return latheStep(*a, alternatives); });
+  if (step == alternatives.end() || !context.icp) return {};
+  const std::optional<Screw> turn =
+      leastConstrainedTurn(context.icp->system(context.model, best.pose, region, &context.scorer),
+                           0.5 * context.model.diameter);
+  if (!turn) return {};
+  const double angle = kBetweenSteps * (*step)->angle;
+  return {Candidate(turn->by(angle) * best.pose, kBetweenSteps * (*step)->shift),
+          Candidate(turn->by(-angle) * best.pose, kBetweenSteps * (*step)->shift)};
+}
+
+/// Names in `instance` the turns between the lathe steps of `best` (turnsBetweenSteps) that fit as
+/// well as it, judged beside it and `first`, the instance before the choice (the fit's reference).
+void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const Candidate& best,
+                          const std::vector<const ShapeAlternative*>& alternatives,
+                          const PreparedModel& model, const RefinementContext& context,
+                          const CandidateMeasure& measure, const ConfirmedSurface& surface,
+                          int threads) {
+  std::vector<Candidate> turns{first, best};
+  const std::vector<Candidate> between =
+      turnsBetweenSteps(best, alternatives, context, instance.region);
+  if (between.empty()) return;
+  turns.insert(turns.end(), between.begin(), between.end());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t k = 2; k < turns.size(); ++k) {
+    measure(turns[k], instance.region);
+    if (fits(turns[k], first)) turns[k].left_out = measure.leftOut(turns[k], surface);
+  }
+  judge(turns);
+  addEquallyFitting(turns, turns[1], model, instance.ambiguous);
 }
 
 void chooseFor(InstancePose& instance, const PreparedModel& model,
@@ -303,8 +395,11 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   }
   steps += taken;
   const Candidate& best = candidates[kept];
+  instance.ambiguous.clear();
+  addEquallyFitting(candidates, best, model, instance.ambiguous);
+  addTurnsBetweenSteps(instance, candidates.front(), best, alternatives, model, context, measure,
+                       surface, threads);
   const bool turned = kept > 0;  // an alternative, not the instance itself
-  instance.ambiguous = equallyFitting(candidates, best, model);
   if (turned) {
     instance.pose = best.pose;
     instance.lcp = best.lcp;
