@@ -1,5 +1,6 @@
 #include "alternative_choice.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <optional>
@@ -271,8 +272,11 @@ void addEquallyFitting(const std::vector<Candidate>& candidates, const Candidate
 /// A lathe's body (a mug's) turns onto itself by any angle, so its alternatives come in steps about
 /// one axis: a turn below this angle and its double.
 const float kLatheStep = 45.0f * static_cast<float>(M_PI) / 180.0f;
+/// The share of a lathe's samples that its axis is fitted to: the rest, those its turn moves most
+/// along their normals, are the parts that do not turn onto themselves (a mug's handle).
+constexpr double kLatheBody = 0.75;
 /// The turns between a lathe's steps that are judged, as a share of the step either way.
-constexpr float kBetweenSteps = 2.0f / 3.0f;
+constexpr double kBetweenSteps = 2.0 / 3.0;
 
 /// Whether `a` is a lathe's step among `alternatives`: below kLatheStep, and its double about the
 /// same axis is there too.
@@ -285,73 +289,93 @@ bool latheStep(const ShapeAlternative& a,
   });
 }
 
-/// A turn about an axis line, camera frame, sliding along it by `pitch` metres per radian.
-struct Screw {
+/// A model whose body turns onto itself by any angle about an axis line (model frame).
+struct Lathe {
   Eigen::Vector3d point, axis;  ///< on the line; unit
-  double pitch = 0;
+  double step = 0;              ///< radians: its shape alternatives' smallest turn about the axis
+  float shift = 0;              ///< of that turn (ShapeAlternative::shift)
+  /// Share of the samples that a step moves by more than the sampling radius along their normals:
+  /// the parts that do not turn onto themselves (a mug's handle, 5%; none on a can; half of a
+  /// box, which is no lathe).
+  double handle = 0;
 
-  Eigen::Isometry3f by(double angle) const {
+  /// `pose` turned about the axis by `angle`.
+  Eigen::Isometry3f turned(const Eigen::Isometry3f& pose, double angle) const {
     Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
     turn.linear() = Eigen::AngleAxisd(angle, axis).matrix();
-    turn.translation() = point - turn.linear() * point + angle * pitch * axis;
-    return turn.cast<float>();
+    turn.translation() = point - turn.linear() * point;
+    return pose * turn.cast<float>();
   }
 };
 
-/// The turn of `system`'s pose that its measured surface constrains least: the rotation-led
-/// eigenvector of the normal equations with the smallest eigenvalue, rotation scaled by `radius`
-/// to a length (a slide along a mug's axis may be freer still). Hidden parts add no rows: a mug's
-/// body seen without its handle turns freely about its axis.
-std::optional<Screw> leastConstrainedTurn(const PointToPlaneSystem& system, double radius) {
-  if (system.used <= 6 || radius <= 0) return std::nullopt;
-  Eigen::Matrix<double, 6, 1> scale;
-  scale << Eigen::Vector3d::Constant(1 / radius), Eigen::Vector3d::Ones();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(
-      scale.asDiagonal() * system.jtj * scale.asDiagonal());
-  if (eigen.info() != Eigen::Success) return std::nullopt;
-  for (int k = 0; k < 6; ++k) {  // eigenvalues ascend
-    const Eigen::Matrix<double, 6, 1> motion = eigen.eigenvectors().col(k);
-    if (motion.head<3>().norm() <= motion.tail<3>().norm()) continue;  // a slide
-    // Velocity w x (p - centre) + v: a turn about the line through centre + (w x v) / |w|^2.
-    const Eigen::Vector3d w = motion.head<3>() / radius, v = motion.tail<3>();
-    return Screw{system.centre + w.cross(v) / w.squaredNorm(), w.normalized(),
-                 w.dot(v) / w.squaredNorm()};
+/// The axis line (model frame) of the turn that moves `model`'s body least along its normals: the
+/// motion (w, v) minimising sum (w . (p x n) + v . n)^2 over the samples with |w| = 1 (the position
+/// following the turn as well as it can), fitted again a few times on the kLatheBody share that
+/// it moves least. The shape alternatives' own axes lean towards the handle by up to 13 degrees:
+/// turned about those, a body moves off itself.
+void fitLatheAxis(const ObjectModel& model, Lathe& lathe) {
+  const Eigen::Vector3d centre = sampleCentre(model).cast<double>();
+  std::vector<Eigen::Matrix<double, 6, 1>> rows(model.size());
+  for (size_t i = 0; i < model.size(); ++i) {
+    const Eigen::Vector3d p = model.points[i].cast<double>() - centre;
+    const Eigen::Vector3d n = model.normals[i].cast<double>();
+    rows[i] << p.cross(n), n;
   }
-  return std::nullopt;
+  std::vector<double> moved(rows.size(), 0);  // all kept in the first round
+  for (int round = 0; round < 4; ++round) {
+    std::vector<double> sorted = moved;
+    const auto body = sorted.begin() +
+                      static_cast<std::ptrdiff_t>(kLatheBody * static_cast<double>(sorted.size()));
+    std::nth_element(sorted.begin(), body, sorted.end());
+    Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
+    for (size_t i = 0; i < rows.size(); ++i) {
+      if (round == 0 || moved[i] <= *body) normal += rows[i] * rows[i].transpose();
+    }
+    const Eigen::Matrix3d ww = normal.topLeftCorner<3, 3>(), wv = normal.topRightCorner<3, 3>();
+    const Eigen::LDLT<Eigen::Matrix3d> slide(normal.bottomRightCorner<3, 3>());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(ww -
+                                                               wv * slide.solve(wv.transpose()));
+    const Eigen::Vector3d w = eigen.eigenvectors().col(0);
+    Eigen::Vector3d v = -slide.solve(wv.transpose() * w);
+    for (size_t i = 0; i < rows.size(); ++i) {
+      moved[i] = std::abs(rows[i].head<3>().dot(w) + rows[i].tail<3>().dot(v));
+    }
+    v -= v.dot(w) * w;  // a slide along the axis leaves the line where it is
+    lathe.point = centre + w.cross(v);
+    lathe.axis = w;
+  }
+  const double off = static_cast<double>(model.sampling_radius) / lathe.step;  // per radian
+  lathe.handle = static_cast<double>(
+                     std::count_if(moved.begin(), moved.end(), [&](double m) { return m > off; })) /
+                 static_cast<double>(std::max<size_t>(1, moved.size()));
 }
 
-/// `best` turned either way about the turn its measured surface constrains least by kBetweenSteps
-/// of the model's lathe step among `alternatives`, if it has one: a mug's handle straight behind
-/// its body stays hidden over a range of turns, not only at the steps, and those turns fit as well
-/// as `best`.
-std::vector<Candidate> turnsBetweenSteps(const Candidate& best,
-                                         const std::vector<const ShapeAlternative*>& alternatives,
-                                         const RefinementContext& context, int region) {
+/// `model` as a lathe, if its `alternatives` hold a lathe's step and at least kLatheBody of its
+/// samples turn onto themselves by it.
+std::optional<Lathe> latheOf(const PreparedModel& model,
+                             const std::vector<const ShapeAlternative*>& alternatives) {
   const auto step =
       std::find_if(alternatives.begin(), alternatives.end(),
                    [&](const ShapeAlternative* a) { return latheStep(*a, alternatives); });
-  if (step == alternatives.end() || !context.icp) return {};
-  const std::optional<Screw> turn =
-      leastConstrainedTurn(context.icp->system(context.model, best.pose, region, &context.scorer),
-                           0.5 * context.model.diameter);
-  if (!turn) return {};
-  const double angle = kBetweenSteps * (*step)->angle;
-  return {Candidate(turn->by(angle) * best.pose, kBetweenSteps * (*step)->shift),
-          Candidate(turn->by(-angle) * best.pose, kBetweenSteps * (*step)->shift)};
+  if (step == alternatives.end()) return std::nullopt;
+  Lathe lathe;
+  lathe.step = (*step)->angle;
+  lathe.shift = (*step)->shift;
+  fitLatheAxis(model.model, lathe);
+  if (lathe.handle > 1 - kLatheBody) return std::nullopt;  // no body turns onto itself (a box)
+  return lathe;
 }
 
-/// Names in `instance` the turns between the lathe steps of `best` (turnsBetweenSteps) that fit as
-/// well as it, judged beside it and `first`, the instance before the choice (the fit's reference).
+/// Names in `instance` the turns of `best` about `lathe`'s axis by kBetweenSteps of its step either
+/// way that fit as well as it (a handle straight behind the body stays hidden over a range of
+/// turns), judged beside it and `first`, the instance before the choice (the fit's reference).
 void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const Candidate& best,
-                          const std::vector<const ShapeAlternative*>& alternatives,
-                          const PreparedModel& model, const RefinementContext& context,
+                          const Lathe& lathe, const PreparedModel& model,
                           const CandidateMeasure& measure, const ConfirmedSurface& surface,
                           int threads) {
-  std::vector<Candidate> turns{first, best};
-  const std::vector<Candidate> between =
-      turnsBetweenSteps(best, alternatives, context, instance.region);
-  if (between.empty()) return;
-  turns.insert(turns.end(), between.begin(), between.end());
+  const double angle = kBetweenSteps * lathe.step;
+  std::vector<Candidate> turns{first, best, Candidate(lathe.turned(best.pose, angle), lathe.shift),
+                               Candidate(lathe.turned(best.pose, -angle), lathe.shift)};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 2; k < turns.size(); ++k) {
     measure(turns[k], instance.region);
@@ -363,8 +387,8 @@ void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const 
 
 void chooseFor(InstancePose& instance, const PreparedModel& model,
                const std::vector<const ShapeAlternative*>& alternatives,
-               const RefinementContext& context, const CandidateMeasure& measure, int threads,
-               long& steps) {
+               const std::optional<Lathe>& lathe, const RefinementContext& context,
+               const CandidateMeasure& measure, int threads, long& steps) {
   std::vector<Candidate> candidates{Candidate(instance.pose)};
   for (const ShapeAlternative* a : alternatives) {
     candidates.emplace_back(instance.pose * a->motion, a->shift);
@@ -397,8 +421,10 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   const Candidate& best = candidates[kept];
   instance.ambiguous.clear();
   addEquallyFitting(candidates, best, model, instance.ambiguous);
-  addTurnsBetweenSteps(instance, candidates.front(), best, alternatives, model, context, measure,
-                       surface, threads);
+  if (lathe) {
+    addTurnsBetweenSteps(instance, candidates.front(), best, *lathe, model, measure, surface,
+                         threads);
+  }
   const bool turned = kept > 0;  // an alternative, not the instance itself
   if (turned) {
     instance.pose = best.pose;
@@ -423,8 +449,9 @@ void chooseAmongAlternatives(std::vector<InstancePose>& instances, const Prepare
   const std::vector<const ShapeAlternative*> alternatives = distinctAlternatives(model);
   if (alternatives.empty()) return;
   const CandidateMeasure measure(segment, context, evidence);
+  const std::optional<Lathe> lathe = latheOf(model, alternatives);
   for (InstancePose& instance : instances) {
-    chooseFor(instance, model, alternatives, context, measure, threads, steps);
+    chooseFor(instance, model, alternatives, lathe, context, measure, threads, steps);
   }
 }
 

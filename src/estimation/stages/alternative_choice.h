@@ -26,8 +26,8 @@ constexpr float kAlternativeTie = 0.03f;
 /// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
 /// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
 /// and its covariance spans them. A lathe's body turns by any angle, so the kept pose turned
-/// between its steps (about the turn the measured surface constrains least) is judged and named
-/// alike. Adds the ICP steps taken to `steps`.
+/// between its steps about the model's lathe axis is judged and named alike. Adds the ICP steps
+/// taken to `steps`.
 void chooseAmongAlternatives(std::vector<InstancePose>& instances, const PreparedModel& model,
                              const SoftSegment& segment, const RefinementContext& context,
                              const FrameEvidence& evidence, int threads, long& steps);
