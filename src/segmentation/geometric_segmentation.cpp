@@ -3,17 +3,20 @@
 #include "stocs/segmentation/geometric_segmentation.h"
 
 #include <fmt/format.h>
+#include <pcl/common/centroid.h>
 #include <pcl/features/integral_image_normal.h>
 #include <pcl/features/organized_edge_detection.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/segmentation/organized_multi_plane_segmentation.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 
 #include "stocs/geometry/mesh.h"
 #include "stocs/io/segmentation_inputs.h"
@@ -39,6 +42,8 @@ constexpr double kPlaneMaxCurvature = 0.005;
 /// table seen through 2.5 times a Kinect's noise broke into small pieces at 0.03); the plane's
 /// points are then taken by distance (plane_distance).
 constexpr float kPlaneGrowDistance = 0.1f;
+/// Times a plane is fitted again to the surface it spreads over before it is found too small.
+constexpr int kPlaneRefits = 2;
 /// An unoccluded object's visible surface spans about this share of its diameter (0.93-1.0 for the
 /// six objects of the generated development scenes, seeds 1-3).
 constexpr float kVisibleShare = 0.95f;
@@ -111,18 +116,79 @@ float planeArea(const PclCloud& cloud, const CameraIntrinsics& camera,
   return static_cast<float>(area);
 }
 
-/// Marks the points of one supporting plane (distance and facing) in `mask`.
-void markPlane(const PclCloud& cloud, const PclNormals& normals, const Eigen::Vector4f& plane,
-               float distance, cv::Mat& mask) {
-  const Eigen::Vector3f n = plane.head<3>();
-  const float min_cos = std::cos(radians(kPlaneFacingDeg));
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    const Eigen::Vector3f p = cloud[i].getVector3fMap();
-    if (!std::isfinite(p.z()) || std::abs(n.dot(p) + plane[3]) > distance) continue;
-    const Eigen::Vector3f normal = normals[i].getNormalVector3fMap();
-    if (normal.allFinite() && std::abs(normal.dot(n)) < min_cos) continue;
-    mask.data[i] = 255;
+/// Whether a point lies on a supporting plane: near it and facing as it does (a point without a
+/// normal by distance alone).
+class OnPlane {
+ public:
+  OnPlane(const PclCloud& cloud, const PclNormals& normals, const Eigen::Vector4f& plane,
+          float distance)
+      : cloud_(cloud),
+        normals_(normals),
+        plane_(plane),
+        distance_(distance),
+        min_cos_(std::cos(radians(kPlaneFacingDeg))) {}
+
+  bool operator()(size_t i) const {
+    const Eigen::Vector3f p = cloud_[i].getVector3fMap();
+    if (!std::isfinite(p.z()) || std::abs(plane_.head<3>().dot(p) + plane_[3]) > distance_) {
+      return false;
+    }
+    const Eigen::Vector3f normal = normals_[i].getNormalVector3fMap();
+    return !normal.allFinite() || std::abs(normal.dot(plane_.head<3>())) >= min_cos_;
   }
+
+ private:
+  const PclCloud& cloud_;
+  const PclNormals& normals_;
+  Eigen::Vector4f plane_;
+  float distance_, min_cos_;
+};
+
+/// Marks the points of one supporting plane in `mask`.
+void markPlane(const OnPlane& on_plane, cv::Mat& mask) {
+  for (size_t i = 0; i < mask.total(); ++i) {
+    if (on_plane(i)) mask.data[i] = 255;
+  }
+}
+
+/// The points on the plane that connect to `seeds` (8-neighbours): the surface a plane's segment
+/// lies on. A table that a noisy sensor's normals broke into segments smaller than a supporting
+/// plane is taken whole; a box's top, level with the tops of others apart from it, is not.
+pcl::PointIndices spreadSurface(const OnPlane& on_plane, int width, int height,
+                                const pcl::PointIndices& seeds) {
+  std::vector<char> visited(static_cast<size_t>(width) * height, 0);
+  std::vector<int> front;
+  for (const int i : seeds.indices) {
+    if (!visited[i] && on_plane(i)) front.push_back(i);
+    visited[i] = 1;
+  }
+  pcl::PointIndices surface;
+  while (!front.empty()) {
+    const int i = front.back();
+    front.pop_back();
+    surface.indices.push_back(i);
+    const int u = i % width, v = i / width;
+    for (int dv = -1; dv <= 1; ++dv) {
+      for (int du = -1; du <= 1; ++du) {
+        if (u + du < 0 || u + du >= width || v + dv < 0 || v + dv >= height) continue;
+        const int j = i + dv * width + du;
+        if (visited[j]) continue;
+        visited[j] = 1;
+        if (on_plane(j)) front.push_back(j);
+      }
+    }
+  }
+  return surface;
+}
+
+/// The least-squares plane (n, d with n . p + d = 0) of at least 3 points.
+Eigen::Vector4f fitPlane(const PclCloud& cloud, const pcl::PointIndices& points) {
+  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
+  Eigen::Vector4f centroid = Eigen::Vector4f::Zero();
+  pcl::computeMeanAndCovarianceMatrix(cloud, points.indices, covariance, centroid);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver(covariance);
+  const Eigen::Vector3f n = solver.eigenvectors().col(0);
+  return {n.x(), n.y(), n.z(), -n.dot(centroid.head<3>())};
 }
 
 /// Whether the surface turns up into a valley between neighbours a and b: their normals (toward
@@ -319,15 +385,39 @@ class ReducedFrame {
     cv::Mat mask(camera_.height, camera_.width, CV_8UC1, cv::Scalar(0));
     count = 0;
     for (size_t k = 0; k < coefficients.size(); ++k) {
+      if (alreadyRemoved(inliers[k], mask)) continue;
       const auto& c = coefficients[k].values;
-      const Eigen::Vector4f plane(c[0], c[1], c[2], c[3]);
-      if (planeArea(*cloud_, camera_, inliers[k], plane.head<3>()) < params_.plane_min_area) {
-        continue;
-      }
-      markPlane(*cloud_, *normals_, plane, params_.plane_distance, mask);
+      const auto plane = supportingPlane({c[0], c[1], c[2], c[3]}, inliers[k]);
+      if (!plane) continue;
+      markPlane(OnPlane(*cloud_, *normals_, *plane, params_.plane_distance), mask);
       ++count;
     }
     return mask;
+  }
+
+  /// Whether most of a plane segment lies on a supporting plane already removed (another segment
+  /// of a table that noise broke up).
+  static bool alreadyRemoved(const pcl::PointIndices& segment, const cv::Mat& mask) {
+    size_t on = 0;
+    for (const int i : segment.indices) on += mask.data[i] != 0;
+    return 2 * on > segment.indices.size();
+  }
+
+  /// The supporting plane a PCL plane segment lies on, if the surface it spreads over has the
+  /// params' area. PCL fits the plane to the segment alone, which a noisy sensor tilts: while the
+  /// surface is smaller, the plane is fitted again to it (kPlaneRefits times).
+  std::optional<Eigen::Vector4f> supportingPlane(Eigen::Vector4f plane,
+                                                 const pcl::PointIndices& segment) const {
+    pcl::PointIndices surface = segment;
+    for (int pass = 0;; ++pass) {
+      const OnPlane on_plane(*cloud_, *normals_, plane, params_.plane_distance);
+      surface = spreadSurface(on_plane, camera_.width, camera_.height, surface);
+      if (planeArea(*cloud_, camera_, surface, plane.head<3>()) >= params_.plane_min_area) {
+        return plane;
+      }
+      if (pass == kPlaneRefits || surface.indices.size() < 3) return std::nullopt;
+      plane = fitPlane(*cloud_, surface);
+    }
   }
 
   /// CV_8UC1 mask of the depth-discontinuity and crease edges, widened by the params.
