@@ -215,6 +215,7 @@ std::filesystem::path entryFile(const std::filesystem::path& directory,
 void findSymmetries(PreparedModel& m) {
   m.near_symmetries = findNearSymmetries(m.model);
   m.shape_alternatives = findShapeAlternatives(m.model);
+  m.lathe = findLatheAxis(m.model, m.shape_alternatives);
 }
 
 PreparedModel prepareUncached(const std::string& model_file, float unit_scale,

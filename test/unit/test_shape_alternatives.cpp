@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "stocs/estimation/frame.h"
+#include "stocs/model/lathe_axis.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/shape_meshes.h"
 #include "test_support.h"
@@ -19,7 +22,11 @@ using test::renderDepth;
 using test::testCamera;
 
 const CatalogueObject& catalogueObject(const std::string& name) {
-  static const std::vector<CatalogueObject> catalogue = objectCatalogue();
+  static const std::vector<CatalogueObject> catalogue = [] {
+    std::vector<CatalogueObject> all = objectCatalogue();
+    for (CatalogueObject& o : texturedCatalogue()) all.push_back(std::move(o));
+    return all;
+  }();
   for (const CatalogueObject& o : catalogue) {
     if (o.name == name) return o;
   }
@@ -45,6 +52,36 @@ TEST(ShapeAlternatives, MugTurnsAboutItsBody) {
     EXPECT_GE(degrees(a.angle), 15.0f);
     EXPECT_LT(a.shift, m.sampling_radius);
   }
+}
+
+// The mug's body turns onto itself about its own axis, which the handle does not tilt: the body is
+// a lathe about z with its handle at +x, so the axis lies at its smallest x plus its radius.
+TEST(ShapeAlternatives, MugIsALatheAboutItsBodysAxis) {
+  const MeshData& mug = catalogueObject("mug").mesh;
+  const ObjectModel m = prepareModel(mug, ModelSamplingParams{});
+  const std::optional<LatheAxis> lathe = findLatheAxis(m, findShapeAlternatives(m));
+  ASSERT_TRUE(lathe.has_value());
+  float min_x = std::numeric_limits<float>::infinity(), radius = 0;
+  for (const Eigen::Vector3f& v : mug.vertices) {
+    min_x = std::min(min_x, v.x());
+    radius = std::max(radius, std::abs(v.y()));
+  }
+  const Eigen::Vector3f on_body_axis(min_x + radius, 0, 0);
+  EXPECT_GT(std::abs(lathe->axis.z()), std::cos(2 * M_PI / 180)) << lathe->axis.transpose();
+  EXPECT_LT((on_body_axis - lathe->point).cross(lathe->axis).norm(), 0.001f);
+  EXPECT_GT(lathe->handle, 0.01f);
+  EXPECT_LT(lathe->handle, 0.25f);
+}
+
+// A can is a lathe with nothing that does not turn onto itself; a box whose 30-degree turns pass
+// the shape test (the labelled box's) is no lathe: half its samples move.
+TEST(ShapeAlternatives, CanIsALatheWithoutAHandleAndABoxIsNone) {
+  const ObjectModel can = prepareModel(catalogueObject("printed can").mesh, ModelSamplingParams{});
+  const std::optional<LatheAxis> lathe = findLatheAxis(can, findShapeAlternatives(can));
+  ASSERT_TRUE(lathe.has_value());
+  EXPECT_LT(lathe->handle, 0.01f);
+  const ObjectModel box = prepareModel(catalogueObject("labelled box").mesh, ModelSamplingParams{});
+  EXPECT_FALSE(findLatheAxis(box, findShapeAlternatives(box)).has_value());
 }
 
 TEST(ShapeAlternatives, BoxHalfTurnsAboutEachAxis) {

@@ -8,8 +8,10 @@
 // renamed, so concurrent readers never see half a file.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "stocs/model/lathe_axis.h"
 #include "stocs/model/near_symmetries.h"
 #include "stocs/model/object_model.h"
 #include "stocs/model/object_symmetries.h"
@@ -35,6 +37,8 @@ struct PreparedModel {
   std::vector<NearSymmetry> near_symmetries;
   /// findShapeAlternatives(model): computed on loading, not stored in the cache.
   std::vector<ShapeAlternative> shape_alternatives;
+  /// findLatheAxis(model, shape_alternatives): computed on loading, not stored in the cache.
+  std::optional<LatheAxis> lathe;
   /// Declared by the user (the node's `symmetries`, models_info.json), not read from the model
   /// file: empty after loading.
   ObjectSymmetries symmetries;

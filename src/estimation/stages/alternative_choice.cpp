@@ -1,7 +1,5 @@
 #include "alternative_choice.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <optional>
 
@@ -269,113 +267,28 @@ void addEquallyFitting(const std::vector<Candidate>& candidates, const Candidate
   }
 }
 
-/// A lathe's body (a mug's) turns onto itself by any angle, so its alternatives come in steps about
-/// one axis: a turn below this angle and its double.
-const float kLatheStep = 45.0f * static_cast<float>(M_PI) / 180.0f;
-/// The share of a lathe's samples that its axis is fitted to: the rest, those its turn moves most
-/// along their normals, are the parts that do not turn onto themselves (a mug's handle).
-constexpr double kLatheBody = 0.75;
 /// The turns between a lathe's steps that are judged, as a share of the step either way.
-constexpr double kBetweenSteps = 2.0 / 3.0;
+constexpr float kBetweenSteps = 2.0f / 3.0f;
 
-/// Whether `a` is a lathe's step among `alternatives`: below kLatheStep, and its double about the
-/// same axis is there too.
-bool latheStep(const ShapeAlternative& a,
-               const std::vector<const ShapeAlternative*>& alternatives) {
-  if (a.angle >= kLatheStep) return false;
-  return std::any_of(alternatives.begin(), alternatives.end(), [&](const ShapeAlternative* b) {
-    return b->axis.dot(a.axis) > std::cos(kDistinctAngle) &&
-           std::abs(b->angle - 2 * a.angle) < kDistinctAngle;
-  });
-}
-
-/// A model whose body turns onto itself by any angle about an axis line (model frame).
-struct Lathe {
-  Eigen::Vector3d point, axis;  ///< on the line; unit
-  double step = 0;              ///< radians: its shape alternatives' smallest turn about the axis
-  float shift = 0;              ///< of that turn (ShapeAlternative::shift)
-  /// Share of the samples that a step moves by more than the sampling radius along their normals:
-  /// the parts that do not turn onto themselves (a mug's handle, 5%; none on a can; half of a
-  /// box, which is no lathe).
-  double handle = 0;
-
-  /// `pose` turned about the axis by `angle`.
-  Eigen::Isometry3f turned(const Eigen::Isometry3f& pose, double angle) const {
-    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-    turn.linear() = Eigen::AngleAxisd(angle, axis).matrix();
-    turn.translation() = point - turn.linear() * point;
-    return pose * turn.cast<float>();
-  }
-};
-
-/// The axis line (model frame) of the turn that moves `model`'s body least along its normals: the
-/// motion (w, v) minimising sum (w . (p x n) + v . n)^2 over the samples with |w| = 1 (the position
-/// following the turn as well as it can), fitted again a few times on the kLatheBody share that
-/// it moves least. The shape alternatives' own axes lean towards the handle by up to 13 degrees:
-/// turned about those, a body moves off itself.
-void fitLatheAxis(const ObjectModel& model, Lathe& lathe) {
-  const Eigen::Vector3d centre = sampleCentre(model).cast<double>();
-  std::vector<Eigen::Matrix<double, 6, 1>> rows(model.size());
-  for (size_t i = 0; i < model.size(); ++i) {
-    const Eigen::Vector3d p = model.points[i].cast<double>() - centre;
-    const Eigen::Vector3d n = model.normals[i].cast<double>();
-    rows[i] << p.cross(n), n;
-  }
-  std::vector<double> moved(rows.size(), 0);  // all kept in the first round
-  for (int round = 0; round < 4; ++round) {
-    std::vector<double> sorted = moved;
-    const auto body = sorted.begin() +
-                      static_cast<std::ptrdiff_t>(kLatheBody * static_cast<double>(sorted.size()));
-    std::nth_element(sorted.begin(), body, sorted.end());
-    Eigen::Matrix<double, 6, 6> normal = Eigen::Matrix<double, 6, 6>::Zero();
-    for (size_t i = 0; i < rows.size(); ++i) {
-      if (round == 0 || moved[i] <= *body) normal += rows[i] * rows[i].transpose();
-    }
-    const Eigen::Matrix3d ww = normal.topLeftCorner<3, 3>(), wv = normal.topRightCorner<3, 3>();
-    const Eigen::LDLT<Eigen::Matrix3d> slide(normal.bottomRightCorner<3, 3>());
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(ww -
-                                                               wv * slide.solve(wv.transpose()));
-    const Eigen::Vector3d w = eigen.eigenvectors().col(0);
-    Eigen::Vector3d v = -slide.solve(wv.transpose() * w);
-    for (size_t i = 0; i < rows.size(); ++i) {
-      moved[i] = std::abs(rows[i].head<3>().dot(w) + rows[i].tail<3>().dot(v));
-    }
-    v -= v.dot(w) * w;  // a slide along the axis leaves the line where it is
-    lathe.point = centre + w.cross(v);
-    lathe.axis = w;
-  }
-  const double off = static_cast<double>(model.sampling_radius) / lathe.step;  // per radian
-  lathe.handle = static_cast<double>(
-                     std::count_if(moved.begin(), moved.end(), [&](double m) { return m > off; })) /
-                 static_cast<double>(std::max<size_t>(1, moved.size()));
-}
-
-/// `model` as a lathe, if its `alternatives` hold a lathe's step and at least kLatheBody of its
-/// samples turn onto themselves by it.
-std::optional<Lathe> latheOf(const PreparedModel& model,
-                             const std::vector<const ShapeAlternative*>& alternatives) {
-  const auto step =
-      std::find_if(alternatives.begin(), alternatives.end(),
-                   [&](const ShapeAlternative* a) { return latheStep(*a, alternatives); });
-  if (step == alternatives.end()) return std::nullopt;
-  Lathe lathe;
-  lathe.step = (*step)->angle;
-  lathe.shift = (*step)->shift;
-  fitLatheAxis(model.model, lathe);
-  if (lathe.handle > 1 - kLatheBody) return std::nullopt;  // no body turns onto itself (a box)
-  return lathe;
+/// Whether the model is a lathe whose turns between steps are not declared symmetries (a bowl's
+/// are equivalents, never named).
+bool turnsBetweenSteps(const PreparedModel& model) {
+  if (!model.lathe) return false;
+  const Eigen::Isometry3f turn = model.lathe->turn(kBetweenSteps * model.lathe->step);
+  return !isSymmetry(turn, model.symmetries, sampleCentre(model.model), kSymmetryAngle,
+                     model.model.sampling_radius);
 }
 
 /// Names in `instance` the turns of `best` about `lathe`'s axis by kBetweenSteps of its step either
 /// way that fit as well as it (a handle straight behind the body stays hidden over a range of
 /// turns), judged beside it and `first`, the instance before the choice (the fit's reference).
 void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const Candidate& best,
-                          const Lathe& lathe, const PreparedModel& model,
+                          const LatheAxis& lathe, const PreparedModel& model,
                           const CandidateMeasure& measure, const ConfirmedSurface& surface,
                           int threads) {
-  const double angle = kBetweenSteps * lathe.step;
-  std::vector<Candidate> turns{first, best, Candidate(lathe.turned(best.pose, angle), lathe.shift),
-                               Candidate(lathe.turned(best.pose, -angle), lathe.shift)};
+  const float angle = kBetweenSteps * lathe.step;
+  std::vector<Candidate> turns{first, best, Candidate(best.pose * lathe.turn(angle), lathe.shift),
+                               Candidate(best.pose * lathe.turn(-angle), lathe.shift)};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 2; k < turns.size(); ++k) {
     measure(turns[k], instance.region);
@@ -386,9 +299,9 @@ void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const 
 }
 
 void chooseFor(InstancePose& instance, const PreparedModel& model,
-               const std::vector<const ShapeAlternative*>& alternatives,
-               const std::optional<Lathe>& lathe, const RefinementContext& context,
-               const CandidateMeasure& measure, int threads, long& steps) {
+               const std::vector<const ShapeAlternative*>& alternatives, const LatheAxis* lathe,
+               const RefinementContext& context, const CandidateMeasure& measure, int threads,
+               long& steps) {
   std::vector<Candidate> candidates{Candidate(instance.pose)};
   for (const ShapeAlternative* a : alternatives) {
     candidates.emplace_back(instance.pose * a->motion, a->shift);
@@ -449,7 +362,7 @@ void chooseAmongAlternatives(std::vector<InstancePose>& instances, const Prepare
   const std::vector<const ShapeAlternative*> alternatives = distinctAlternatives(model);
   if (alternatives.empty()) return;
   const CandidateMeasure measure(segment, context, evidence);
-  const std::optional<Lathe> lathe = latheOf(model, alternatives);
+  const LatheAxis* lathe = turnsBetweenSteps(model) ? &*model.lathe : nullptr;
   for (InstancePose& instance : instances) {
     chooseFor(instance, model, alternatives, lathe, context, measure, threads, steps);
   }
