@@ -3,14 +3,13 @@
 #include "stocs/segmentation/geometric_segmentation.h"
 
 #include <fmt/format.h>
-#include <pcl/common/centroid.h>
 #include <pcl/features/integral_image_normal.h>
+#include <pcl/features/normal_3d.h>
 #include <pcl/features/organized_edge_detection.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/segmentation/organized_multi_plane_segmentation.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -179,16 +178,6 @@ pcl::PointIndices spreadSurface(const OnPlane& on_plane, int width, int height,
     }
   }
   return surface;
-}
-
-/// The least-squares plane (n, d with n . p + d = 0) of at least 3 points.
-Eigen::Vector4f fitPlane(const PclCloud& cloud, const pcl::PointIndices& points) {
-  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
-  Eigen::Vector4f centroid = Eigen::Vector4f::Zero();
-  pcl::computeMeanAndCovarianceMatrix(cloud, points.indices, covariance, centroid);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3f> solver(covariance);
-  const Eigen::Vector3f n = solver.eigenvectors().col(0);
-  return {n.x(), n.y(), n.z(), -n.dot(centroid.head<3>())};
 }
 
 /// Whether the surface turns up into a valley between neighbours a and b: their normals (toward
@@ -416,7 +405,8 @@ class ReducedFrame {
         return plane;
       }
       if (pass == kPlaneRefits || surface.indices.size() < 3) return std::nullopt;
-      plane = fitPlane(*cloud_, surface);
+      float curvature = 0;  // the least-squares plane of the surface
+      pcl::computePointNormal(*cloud_, surface.indices, plane, curvature);
     }
   }
 
