@@ -117,9 +117,10 @@ class EstimateRun {
                o_.out);
     if (tracker_) {
       fmt::print(stderr,
-                 "tracking: {} poses tracked, {} redetected, {} lost; {} full detections of {} "
-                 "(image, object) pairs\n",
-                 counts_.tracked, counts_.redetected, counts_.lost, counts_.detections, targets_);
+                 "tracking: {} poses tracked, {} redetected, {} lost, {} hidden; {} full "
+                 "detections of {} (image, object) pairs\n",
+                 counts_.tracked, counts_.redetected, counts_.lost, counts_.hidden,
+                 counts_.detections, targets_);
     }
     return 0;
   }
@@ -266,6 +267,7 @@ class EstimateRun {
     counts_.tracked += t.counts.tracked;
     counts_.redetected += t.counts.redetected;
     counts_.lost += t.counts.lost;
+    counts_.hidden += t.counts.hidden;
     counts_.detections += t.counts.detections;
     return results;
   }

@@ -44,6 +44,7 @@ void add(FrameTracking& out, const std::string& name, ObjectTracking t, double c
     out.counts.tracked += s == TrackState::kTracked;
     out.counts.redetected += s == TrackState::kRedetected;
     out.counts.lost += s == TrackState::kLost;
+    out.counts.hidden += s == TrackState::kHidden;
   }
   out.counts.detections += t.detected;
   ObjectResult result{name, std::move(t.estimate), cpu_seconds};

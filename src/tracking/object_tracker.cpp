@@ -27,6 +27,8 @@ const char* toString(TrackState state) {
       return "redetected";
     case TrackState::kLost:
       return "lost";
+    case TrackState::kHidden:
+      return "hidden";
     case TrackState::kUntracked:
       return "untracked";
   }
@@ -105,6 +107,13 @@ class ObjectTracker::Step {
       // About a symmetry the data leaves the pose free: it keeps the predicted equivalent.
       pose.pose = nearestEquivalentPose(pose.pose, predicted[k], in_.model->symmetries);
       if (!pose.accepted) {
+        // Where predicted, hidden and not contradicted: held at its last pose (the few points
+        // left in view may pull the follow anywhere); else lost until a search or detection finds
+        // it.
+        const bool hidden =
+            tracker_.params_.hold_hidden && follower_->hiddenBehindNearerSurface(predicted[k]);
+        tracks[k].state = hidden ? TrackState::kHidden : TrackState::kLost;
+        tracks[k].motion.stop();
         attempts_[k] = std::move(pose);
         failed = true;
         continue;
@@ -142,7 +151,11 @@ class ObjectTracker::Step {
     for (size_t k = 0; k < tracker_.tracks_.size(); ++k) {
       Track& track = tracker_.tracks_[k];
       InstancePose pose = track.pose;
-      if (!settled_[k]) {
+      if (!settled_[k] && track.state == TrackState::kHidden && attempts_[k]) {
+        pose.confidence = attempts_[k]->confidence;
+        pose.accepted = false;
+        pose.rejection = "hidden behind a nearer surface, held: " + attempts_[k]->rejection;
+      } else if (!settled_[k]) {
         track.state = TrackState::kLost;
         track.motion.stop();
         if (attempts_[k]) pose.confidence = attempts_[k]->confidence;
@@ -208,7 +221,9 @@ ObjectTracking ObjectTracker::followOnly(const ObjectInput& in, double dt) {
 }
 
 bool ObjectTracker::untracked() const {
-  const auto lost = [](const Track& t) { return t.state == TrackState::kLost; };
+  const auto lost = [](const Track& t) {
+    return t.state == TrackState::kLost || t.state == TrackState::kHidden;
+  };
   return tracks_.empty() || std::any_of(tracks_.begin(), tracks_.end(), lost);
 }
 
@@ -216,7 +231,9 @@ std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const Prepa
                                       const PipelineParams& params) {
   detectionRan(detection);
   std::vector<char> settled;
-  for (const Track& t : tracks_) settled.push_back(t.state != TrackState::kLost);
+  for (const Track& t : tracks_) {
+    settled.push_back(t.state != TrackState::kLost && t.state != TrackState::kHidden);
+  }
   TrackAssignment assignment(tracks_, settled, params_, model, params);
   std::vector<int> taken = assignment.assign(detection);
   confirm_detection_ = assignment.moved();

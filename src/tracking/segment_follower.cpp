@@ -8,6 +8,15 @@
 #include "stocs/estimation/stages/pose_covariance.h"
 
 namespace stocs {
+namespace {
+
+/// At most this share of a hidden pose's seen samples may lie where the sensor sees through: about
+/// what accepted follows show (1.4% in median, 7% at the 90th percentile on the tuning sequence).
+constexpr float kHiddenFreeSpace = 0.05f;
+/// At least this share of a hidden pose's seen samples lie behind a nearer measured surface.
+constexpr float kHiddenShare = 0.5f;
+
+}  // namespace
 
 cv::Rect predictedBox(const PoseProximity& extent, const Eigen::Isometry3f& pose,
                       const CameraIntrinsics& camera, float margin) {
@@ -48,6 +57,15 @@ InstancePose SegmentFollower::follow(const Eigen::Isometry3f& predicted) const {
   const FreeSpaceCheck surface(*in_.cloud, *in_.camera, in_.params->stocs.free_space);
   judgeInstance(pose, model, &surface, *in_.probability, in_.params->confidence);
   return pose;
+}
+
+bool SegmentFollower::hiddenBehindNearerSurface(const Eigen::Isometry3f& pose) const {
+  const FreeSpaceCheck surface(*in_.cloud, *in_.camera, in_.params->stocs.free_space);
+  const SurfaceComparison c = surface.compare(in_.model->model, pose);
+  if (c.seen == 0) return false;  // out of view or unmeasured: nothing says it is behind anything
+  const float seen = static_cast<float>(c.seen);
+  const float behind = static_cast<float>(c.seen - c.free - c.confirmed) / seen;
+  return behind >= kHiddenShare && static_cast<float>(c.free) / seen <= kHiddenFreeSpace;
 }
 
 PoseEstimate SegmentFollower::search() const {

@@ -49,12 +49,27 @@ int TrackAssignment::nearestTrack(const InstancePose& pose,
   return best;
 }
 
+bool TrackAssignment::turnsHidden(int k, const InstancePose& pose) const {
+  const Track& track = tracks_[k];
+  if (track.state != TrackState::kHidden) return false;
+  const Eigen::Isometry3f& held = track.pose.pose;
+  const Eigen::Isometry3f found = nearestEquivalentPose(pose.pose, held, symmetries_);
+  // ADD over a prefix of the samples, which are in random order: an unbiased subsample.
+  constexpr size_t kSamples = 256;
+  const size_t n = std::min(model_.points.size(), kSamples);
+  float sum = 0;
+  for (size_t i = 0; i < n; ++i) sum += (found * model_.points[i] - held * model_.points[i]).norm();
+  return n > 0 && sum > separation_ * static_cast<float>(n);
+}
+
 /// Where an accepted pose that continues no track goes: a track without a pose this frame, a new
-/// track while there is room, or else the settled track it is preferred to (a tracked pose on a
-/// look-alike, whose confidence is lower), or -1.
+/// track while there is room, or else the track it is preferred to (a tracked pose on a
+/// look-alike, or a hidden one, whose confidence is lower), or -1.
 int TrackAssignment::placeFor(const InstancePose& pose, const std::vector<char>& claimed) {
   for (size_t k = 0; k < tracks_.size(); ++k) {
-    if (!claimed[k] && !settled_[k]) return static_cast<int>(k);
+    if (!claimed[k] && !settled_[k] && tracks_[k].state != TrackState::kHidden) {
+      return static_cast<int>(k);
+    }
   }
   if (tracks_.size() < static_cast<size_t>(max_instances_)) {
     tracks_.push_back({static_cast<int>(tracks_.size()), TrackState::kRedetected, pose,
@@ -88,7 +103,9 @@ std::vector<int> TrackAssignment::assign(const PoseEstimate& found) {
     claimed[k] = 1;
     // A settled track keeps its tracked pose unless the confidence prefers the detection: the
     // same place turned otherwise (a mug's handle) is no other track, but may be the right pose.
-    if (!settled_[k] || pose.confidence > challenged(k)) {
+    // So does a hidden track against a pose that turns or moves it: its visible part alone fits.
+    const bool held = settled_[k] || turnsHidden(k, pose);
+    if (!held || pose.confidence > challenged(k)) {
       take(k, pose);
       taken.push_back(k);
     }

@@ -5,7 +5,10 @@
 // poses go to a track without a pose, a new track while there is room (StocsParams::instances), or
 // replace the settled track with the lowest confidence when they have a higher one. A settled
 // pose is compared with its consensus among the detection's bases: a followed pose has no bases of
-// its own, and its zero consensus would let any detection win.
+// its own, and its zero consensus would let any detection win. A hidden track (TrackState::kHidden)
+// is continued by a pose within the instance separation of its held pose by ADD (up to declared
+// symmetries), and holds it as a settled track does against one that turns or moves it: the
+// visible part of a hidden object fits other poses.
 
 #include <optional>
 #include <vector>
@@ -36,6 +39,9 @@ class TrackAssignment {
   int nearestTrack(const InstancePose& pose, const std::vector<char>& claimed) const;
   int placeFor(const InstancePose& pose, const std::vector<char>& claimed);
   void take(int k, const InstancePose& pose);
+  /// Whether track k is hidden and `pose`, up to declared symmetries, moves its held pose's model
+  /// points by more than the instance separation on average (ADD).
+  bool turnsHidden(int k, const InstancePose& pose) const;
   /// Track k's confidence with its consensus among the bases of the poses being assigned.
   float challenged(int k) const;
   /// The model's same-place test, built on first use: a search or detection that found no
@@ -50,7 +56,7 @@ class TrackAssignment {
   const ConfidenceParams& confidence_;
   const ObjectModel& model_;
   const ObjectSymmetries& symmetries_;  ///< declared: a detection takes the track's equivalent
-  float separation_;                                            // of instances, in metres
+  float separation_;                    // of instances, in metres
   mutable std::optional<InstanceSeparation> same_place_;        // samePlace()
   const std::vector<Eigen::Isometry3f>* base_poses_ = nullptr;  // of the poses being assigned
   bool moved_ = false;

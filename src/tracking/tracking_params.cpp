@@ -27,7 +27,11 @@ const ParamSet<TrackingParams>& TrackingParams::schema() {
           .flag("--local-search")
           .add(&TrackingParams::match_distance, "match_distance", "", ParamRange::aboveUpTo(0, 10),
                "a detection continues a track within this share of the diameter (model centres)")
-          .flag("--match-distance");
+          .flag("--match-distance")
+          .add(&TrackingParams::hold_hidden, "hold_hidden",
+               "hold a track hidden behind a nearer surface (unpublished, followed on) rather than "
+               "lose it; a detection turning it takes it only where the confidence prefers it")
+          .flag("--hold-hidden");
   return schema;
 }
 

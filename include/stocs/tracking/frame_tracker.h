@@ -26,6 +26,7 @@ struct TrackingCounts {
   int tracked = 0;
   int redetected = 0;
   int lost = 0;
+  int hidden = 0;      ///< held behind a nearer surface (TrackState::kHidden)
   int detections = 0;  ///< objects that ran full detection
   bool reset = false;  ///< the tracks were ended before the frame (gap or time going back)
 };

@@ -4,7 +4,10 @@
 //   1. every live track is predicted and refined on the segment of its predicted box
 //      (SegmentFollower) and judged by the calibrated confidence: accepted -> tracked;
 //   2. a track that failed is searched for in the box with StoCS first (local search), then with
-//      full detection (detectObject); an accepted pose there -> redetected, else -> lost;
+//      full detection (detectObject); an accepted pose there -> redetected, else -> lost, or
+//      hidden where a nearer surface hides its predicted pose (held at its last pose, which a
+//      detection that turns or moves it replaces only where the confidence prefers it: a visible
+//      part fits many poses);
 //   3. full detection also runs when there is no track, while a track is lost (detection keeps
 //      trying), and every TrackingParams::redetect_every frames, so that a track that slid onto a
 //      look-alike is replaced by a detection the confidence prefers (FrameTracker lets one object
@@ -28,10 +31,14 @@ enum class TrackState {
   kTracked,     ///< followed from its predicted pose, and accepted
   kRedetected,  ///< found again (or for the first time) by StoCS, and accepted
   kLost,        ///< no accepted pose this frame: not published; detection keeps trying
-  kUntracked,   ///< no track: the best pose of the object's last detection, which rejected it
+  /// Its follow failed only because a nearer surface hides it (TrackingParams::hold_hidden): not
+  /// published; held at its last accepted pose and followed from there; a detection that turns
+  /// or moves it replaces it only where the confidence prefers it, as it does a tracked pose.
+  kHidden,
+  kUntracked,  ///< no track: the best pose of the object's last detection, which rejected it
 };
 
-/// "tracked", "redetected", "lost", "untracked".
+/// "tracked", "redetected", "lost", "hidden", "untracked".
 const char* toString(TrackState state);
 
 struct Track {
@@ -82,12 +89,13 @@ class ObjectTracker {
   /// reports the frame without searching or detecting; a track that is not accepted is lost until
   /// a detection merged with merge() finds it again.
   ObjectTracking followOnly(const ObjectInput& in, double dt);
-  /// Whether an instance is missing: no track yet, or a lost one (detection keeps trying).
+  /// Whether an instance is missing: no track yet, or a lost or hidden one (detection keeps
+  /// trying).
   bool untracked() const;
   /// Hands the accepted poses of a full detection (of this or an earlier frame) to the tracks as
-  /// a frame's detection does, the tracks that are not lost counting as settled (a detection the
-  /// confidence prefers replaces one), and restarts the schedule; the indices of the tracks that
-  /// took a pose.
+  /// a frame's detection does, the tracks neither lost nor hidden counting as settled (a detection
+  /// the confidence prefers replaces one), and restarts the schedule; the indices of the tracks
+  /// that took a pose.
   std::vector<int> merge(const PoseEstimate& detection, const PreparedModel& model,
                          const PipelineParams& params);
 

@@ -33,6 +33,10 @@ class SegmentFollower {
   InstancePose follow(const Eigen::Isometry3f& predicted) const;
   /// StoCS on the box's segment alone (detectOnSegment): the local search after a failure.
   PoseEstimate search() const;
+  /// Whether `pose` (a follow that was not accepted) failed only because a nearer surface hides
+  /// it: of its camera-facing samples on measured pixels, at least half lie behind the measured
+  /// surface, and few where the sensor sees through (nothing measured contradicts it).
+  bool hiddenBehindNearerSurface(const Eigen::Isometry3f& pose) const;
 
   const SoftSegment& segment() const { return segment_; }
 

@@ -29,6 +29,11 @@ struct TrackingParams {
   /// A detected pose continues a track when its model centre lies within this share of the
   /// object's diameter of the track's (the track keeps its instance index).
   float match_distance = 0.3f;
+  /// A track whose follow fails only because a nearer surface hides it (an arm or another object
+  /// passing in front; SegmentFollower::hiddenBehindNearerSurface) is held rather than lost: not
+  /// published, followed on, and taken by a detection that turns or moves it only where the
+  /// confidence prefers that (its visible part alone fits other poses).
+  bool hold_hidden = true;
 
   /// The defaults with `enabled` on: what a stream of frames (the node) starts from.
   static TrackingParams forStream() {

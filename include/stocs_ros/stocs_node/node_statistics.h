@@ -80,7 +80,8 @@ class NodeStatistics {
   uint64_t service_calls_ = 0, service_failures_ = 0;
   uint64_t time_jumps_ = 0;
   uint64_t poses_published_ = 0, poses_rejected_ = 0;
-  uint64_t tracked_ = 0, redetected_ = 0, lost_ = 0, detections_ = 0, track_resets_ = 0;
+  uint64_t tracked_ = 0, redetected_ = 0, lost_ = 0, hidden_ = 0, detections_ = 0;
+  uint64_t track_resets_ = 0;
   uint64_t reported_problems_ = 0;  // rejected + dropped at the previous status()
 };
 

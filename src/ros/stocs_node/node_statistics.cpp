@@ -84,6 +84,7 @@ void NodeStatistics::tracking(const stocs::TrackingCounts& counts) {
   tracked_ += static_cast<uint64_t>(counts.tracked);
   redetected_ += static_cast<uint64_t>(counts.redetected);
   lost_ += static_cast<uint64_t>(counts.lost);
+  hidden_ += static_cast<uint64_t>(counts.hidden);
   detections_ += static_cast<uint64_t>(counts.detections);
   track_resets_ += counts.reset;
 }
@@ -135,6 +136,7 @@ diagnostic_msgs::DiagnosticStatus NodeStatistics::status(const std::string& name
   add("poses tracked", tracked_);
   add("poses redetected", redetected_);
   add("poses lost", lost_);
+  add("poses hidden", hidden_);
   add("full detections while tracking", detections_);
   add("tracking resets", track_resets_);
 
@@ -161,10 +163,11 @@ std::string NodeStatistics::summary() const {
   }
   return line + fmt::format(
                     "; {} service calls ({} failed); time went back {} times; {} poses published, "
-                    "{} rejected; tracking: {} tracked, {} redetected, {} "
-                    "lost, {} full detections, {} resets",
+                    "{} rejected; tracking: {} tracked, {} redetected, {} lost, {} hidden, {} "
+                    "full detections, {} resets",
                     service_calls_, service_failures_, time_jumps_, poses_published_,
-                    poses_rejected_, tracked_, redetected_, lost_, detections_, track_resets_);
+                    poses_rejected_, tracked_, redetected_, lost_, hidden_, detections_,
+                    track_resets_);
 }
 
 }  // namespace stocs_ros

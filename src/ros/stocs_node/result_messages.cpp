@@ -102,10 +102,10 @@ uint8_t stateOf(const FoundPose& f) {
                                                            : ObjectPose::REDETECTED;
 }
 
-/// Whether `f` is a tracked instance that is lost (RejectedObject::lost).
-bool lostPose(const FoundPose& f) {
+/// Whether `f` is a tracked instance in `state` (RejectedObject::lost, hidden).
+bool poseIn(const FoundPose& f, stocs::TrackState state) {
   const std::vector<stocs::TrackState>& states = f.outcome->states;
-  return f.instance < states.size() && states[f.instance] == stocs::TrackState::kLost;
+  return f.instance < states.size() && states[f.instance] == state;
 }
 
 /// Every pose of the result whose acceptance is `accepted`.
@@ -152,7 +152,8 @@ ObjectPoseArray toObjectPoseArray(const FrameResult& result, const EstimationSet
   for (const FoundPose& f : rejectedPoses(result)) {
     RejectedObject r = identifiedMessage<RejectedObject>(f, setup);
     r.reason = rejectionReason(f);
-    r.lost = lostPose(f);
+    r.lost = poseIn(f, stocs::TrackState::kLost);
+    r.hidden = poseIn(f, stocs::TrackState::kHidden);
     out.rejected.push_back(r);
   }
   return out;

@@ -175,7 +175,8 @@ const std::vector<std::string>& runtimeKeys() {
                                                 "tracking.max_gap",
                                                 "tracking.velocity_damping",
                                                 "tracking.roi_margin",
-                                                "tracking.match_distance"};
+                                                "tracking.match_distance",
+                                                "tracking.hold_hidden"};
   return keys;
 }
 

@@ -59,7 +59,7 @@ TEST(NodeStatistics, CountsEveryMessageAndFrameOnce) {
   EXPECT_NE(stats.summary().find("time went back 1 times"), std::string::npos) << stats.summary();
 }
 
-TEST(NodeStatistics, CountsTrackedRedetectedAndLostPoses) {
+TEST(NodeStatistics, CountsTrackedRedetectedLostAndHiddenPoses) {
   NodeStatistics stats({"/cloud"});
   stocs::TrackingCounts first;
   first.redetected = 2;
@@ -67,6 +67,7 @@ TEST(NodeStatistics, CountsTrackedRedetectedAndLostPoses) {
   stocs::TrackingCounts next;
   next.tracked = 1;
   next.lost = 1;
+  next.hidden = 2;
   next.detections = 1;
   next.reset = true;
   stats.tracking(first);
@@ -75,10 +76,11 @@ TEST(NodeStatistics, CountsTrackedRedetectedAndLostPoses) {
   EXPECT_EQ(v["poses tracked"], "1");
   EXPECT_EQ(v["poses redetected"], "2");
   EXPECT_EQ(v["poses lost"], "1");
+  EXPECT_EQ(v["poses hidden"], "2");
   EXPECT_EQ(v["full detections while tracking"], "3");
   EXPECT_EQ(v["tracking resets"], "1");
-  EXPECT_NE(stats.summary().find("tracking: 1 tracked, 2 redetected, 1 lost, 3 full detections, 1 "
-                                 "resets"),
+  EXPECT_NE(stats.summary().find("tracking: 1 tracked, 2 redetected, 1 lost, 2 hidden, 3 full "
+                                 "detections, 1 resets"),
             std::string::npos)
       << stats.summary();
 }
