@@ -33,9 +33,9 @@ class SegmentFollower {
   InstancePose follow(const Eigen::Isometry3f& predicted) const;
   /// StoCS on the box's segment alone (detectOnSegment): the local search after a failure.
   PoseEstimate search() const;
-  /// Whether `pose` (a follow that was not accepted) failed only because a nearer surface hides
-  /// it: of its camera-facing samples on measured pixels, at least half lie behind the measured
-  /// surface, and few where the sensor sees through (nothing measured contradicts it).
+  /// Whether the object at `pose` (a track's prediction, whose follow was not accepted) is hidden
+  /// behind a nearer surface: of its camera-facing samples on measured pixels, at least half lie
+  /// behind the measured surface, and few where the sensor sees through (nothing contradicts it).
   bool hiddenBehindNearerSurface(const Eigen::Isometry3f& pose) const;
 
   const SoftSegment& segment() const { return segment_; }
