@@ -5,6 +5,7 @@
 
 #include "stocs/estimation/pipeline.h"
 #include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/estimation/stages/least_constrained_slide.h"
 #include "stocs/estimation/stages/pose_covariance.h"
 
 namespace stocs {
@@ -49,12 +50,20 @@ InstancePose SegmentFollower::follow(const Eigen::Isometry3f& predicted) const {
   const ObjectModel& model = in_.model->model;
   const IcpRefiner* icp = icp_ ? &*icp_ : nullptr;
   InstancePose pose;
+  const FreeSpaceCheck surface(*in_.cloud, *in_.camera, in_.params->stocs.free_space);
   pose.pose = icp ? icp->refine(model, predicted, -1, &*scorer_) : predicted;
+  pose.covariance = poseCovariance(model, icp, pose.pose, -1, &*scorer_);
+  if (icp) {  // without ICP the covariance is the prior's: no direction is known to be loose
+    const Eigen::Isometry3f slid =
+        slideAlongLeastConstrained(model, pose.pose, pose.covariance, *scorer_, surface);
+    if (!slid.isApprox(pose.pose)) {
+      pose.pose = slid;
+      pose.covariance = poseCovariance(model, icp, pose.pose, -1, &*scorer_);
+    }
+  }
   pose.refined = !pose.pose.isApprox(predicted);
   pose.lcp = scorer_->detail(model, pose.pose, -1);
   pose.score = pose.lcp.score;
-  pose.covariance = poseCovariance(model, icp, pose.pose, -1, &*scorer_);
-  const FreeSpaceCheck surface(*in_.cloud, *in_.camera, in_.params->stocs.free_space);
   judgeInstance(pose, model, &surface, *in_.probability, in_.params->confidence);
   return pose;
 }

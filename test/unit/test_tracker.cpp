@@ -1,6 +1,7 @@
 // Tracking (issue 30): a frame whose object moved a little is tracked from the predicted pose, an
-// object whose map vanishes goes lost and is found again, a time jump ends the tracks, and the
-// constant-velocity prediction and the predicted box.
+// object whose map vanishes goes lost and is found again, a time jump ends the tracks, a follow
+// slid along what ICP leaves loose comes back, and the constant-velocity prediction and the
+// predicted box.
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
@@ -732,6 +733,39 @@ TEST(ConstantVelocity, PredictsAConstantMotionAndDampsIt) {
               1e-6);
   motion.stop();
   EXPECT_TRUE(motion.predict(b, 0.1, 1.0f).isApprox(b));
+}
+
+// A long box lying on a board, seen on its top and its front: its ends face away, so sliding it
+// along its length barely changes ICP's cost, but its end then hangs over board the sensor sees.
+TEST(SegmentFollower, AFollowSlidAlongWhatICPLeavesLooseComesBack) {
+  const MeshData box = boxMesh({0.18f, 0.045f, 0.05f});
+  const std::string file = (test::scratchDir("slide") / "long_box.ply").string();
+  writePly(file, box, 1000.0f);
+  Estimator estimator{PipelineParams{}, ModelCache(test::scratchDir("slide_cache"))};
+  estimator.addObject("long", file);
+  const std::shared_ptr<const PreparedModel> model = estimator.model("long");
+  // Its length across the view, its front and top turned 45 degrees towards the camera.
+  const float s = std::sqrt(0.5f);
+  Eigen::Isometry3f truth = Eigen::Isometry3f::Identity();
+  truth.linear() << 1, 0, 0, 0, s, s, 0, -s, s;
+  truth.translation() = Eigen::Vector3f(0, 0, 0.6f);
+  const Eigen::Isometry3f board =
+      truth * Eigen::Translation3f(0, 0, 0.03f);  // under the box's bottom face (+z)
+  const CameraIntrinsics camera = test::testCamera();
+  cv::Mat labels;
+  const cv::Mat depth =
+      test::renderDepth({{box, truth}, {boxMesh({0.6f, 0.6f, 0.01f}), board}}, camera, &labels);
+  Frame frame = Frame::fromDepth(depth, camera, 1.0);
+  cv::Mat probability(labels.size(), CV_32FC1, cv::Scalar(0));
+  probability.setTo(0.9, labels == 1);
+  frame.probabilities["long"] = probability;
+  const ObjectInput in = objectInput(frame, camera, {"long", model.get()}, estimator.params());
+  const SegmentFollower follower(in, cv::Rect(0, 0, camera.width, camera.height));
+  // Predicted 10 mm along its length (5% of its diameter).
+  const Eigen::Isometry3f predicted = truth * Eigen::Translation3f(0.01f, 0, 0);
+  const InstancePose pose = follower.follow(predicted);
+  EXPECT_LT((pose.pose.translation() - truth.translation()).norm(), 0.02 * model->model.diameter);
+  EXPECT_TRUE(pose.accepted) << pose.rejection;
 }
 
 TEST(PredictedBox, HoldsTheObjectsImageAndStaysInTheImage) {

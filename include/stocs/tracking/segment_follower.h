@@ -1,7 +1,8 @@
 #pragma once
 // One tracking step of one object: the soft segment of the image box where the object is
-// predicted, point-to-plane ICP from the predicted pose against it (the estimator's refiner), and
-// the pose judged by the calibrated confidence (judgeInstance). A tracked pose has no bases, so its
+// predicted, point-to-plane ICP from the predicted pose against it (the estimator's refiner), a
+// search along the direction ICP leaves least constrained (least_constrained_slide.h), and the
+// pose judged by the calibrated confidence (judgeInstance). A tracked pose has no bases, so its
 // consensus evidence is 0: it must be accepted on what the frame shows of it.
 
 #include <Eigen/Geometry>
