@@ -17,6 +17,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Lost or hidden: the track holds no pose accepted in its last frame.
+bool withoutPose(const Track& t) {
+  return t.state == TrackState::kLost || t.state == TrackState::kHidden;
+}
+
 }  // namespace
 
 const char* toString(TrackState state) {
@@ -221,19 +226,14 @@ ObjectTracking ObjectTracker::followOnly(const ObjectInput& in, double dt) {
 }
 
 bool ObjectTracker::untracked() const {
-  const auto lost = [](const Track& t) {
-    return t.state == TrackState::kLost || t.state == TrackState::kHidden;
-  };
-  return tracks_.empty() || std::any_of(tracks_.begin(), tracks_.end(), lost);
+  return tracks_.empty() || std::any_of(tracks_.begin(), tracks_.end(), withoutPose);
 }
 
 std::vector<int> ObjectTracker::merge(const PoseEstimate& detection, const PreparedModel& model,
                                       const PipelineParams& params) {
   detectionRan(detection);
   std::vector<char> settled;
-  for (const Track& t : tracks_) {
-    settled.push_back(t.state != TrackState::kLost && t.state != TrackState::kHidden);
-  }
+  for (const Track& t : tracks_) settled.push_back(!withoutPose(t));
   TrackAssignment assignment(tracks_, settled, params_, model, params);
   std::vector<int> taken = assignment.assign(detection);
   confirm_detection_ = assignment.moved();
