@@ -4,7 +4,7 @@
 #  - tabletop: `stocs synth --catalogue lookalike --objects 6` scenes (each holds one object of each
 #    look-alike pair; its absent targets are drawn among the partners first, their maps mark the
 #    present look-alike), estimated at --min-confidence 0 and scored by `stocs eval --targets`
-#    (ROC AUC, calibration error, right poses rejected at 0.35) and lookalike_metrics.py tabletop
+#    (ROC AUC, calibration error, right poses rejected at min_confidence) and lookalike_metrics.py tabletop
 #    (absent targets with a visible look-alike without a pose, and the other absent ones);
 #  - packed bin: `--packed-bin 1` (2 x 4 boxes, every one in scene_gt.json; absent targets the small
 #    box, whose map marks the bin's boxes, and one other), `--instances 8` at the default

@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "pose_displacement.h"
 #include "stocs/estimation/pipeline.h"
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/tracking/segment_follower.h"
@@ -111,12 +112,10 @@ class ObjectTracker::Step {
       InstancePose pose = follower_->follow(predicted[k]);
       // About a symmetry the data leaves the pose free: it keeps the predicted equivalent.
       pose.pose = nearestEquivalentPose(pose.pose, predicted[k], in_.model->symmetries);
+      const bool hidden = holdsHidden(pose, predicted[k]);
       if (!pose.accepted) {
-        // Where predicted, hidden and not contradicted: held at its last pose (the few points
-        // left in view may pull the follow anywhere); else lost until a search or detection finds
-        // it.
-        const bool hidden =
-            tracker_.params_.hold_hidden && follower_->hiddenBehindNearerSurface(predicted[k]);
+        // Where predicted, hidden and not contradicted: held at its last pose; else lost until a
+        // search or detection finds it.
         tracks[k].state = hidden ? TrackState::kHidden : TrackState::kLost;
         tracks[k].motion.stop();
         attempts_[k] = std::move(pose);
@@ -129,6 +128,25 @@ class ObjectTracker::Step {
       settled_[k] = 1;
     }
     return failed;
+  }
+
+  /// Whether the track predicted at `predicted` is to be held hidden (TrackingParams::hold_hidden):
+  /// its follow was not accepted, or it was but moved the pose past the instance separation (ADD),
+  /// which the few points left in view of a hidden object do, pulling it anywhere; such a follow
+  /// is then rejected.
+  bool holdsHidden(InstancePose& follow, const Eigen::Isometry3f& predicted) const {
+    if (!tracker_.params_.hold_hidden) return false;
+    const ObjectModel& model = in_.model->model;
+    const float moved = follow.accepted ? meanDisplacement(model, follow.pose, predicted) : 0;
+    const float separation = in_.params->stocs.instance_separation * model.diameter;
+    if (follow.accepted && moved <= separation) return false;
+    if (!follower_->hiddenBehindNearerSurface(predicted)) return false;
+    if (follow.accepted) {
+      follow.accepted = false;
+      follow.rejection = fmt::format("the few points in view moved it by {:.0f}% of its diameter",
+                                     100 * moved / model.diameter);
+    }
+    return true;
   }
 
   bool unsettled() const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "pose_displacement.h"
 #include "stocs/estimation/scheduling/base_consensus.h"
 
 namespace stocs {
@@ -54,12 +55,7 @@ bool TrackAssignment::turnsHidden(int k, const InstancePose& pose) const {
   if (track.state != TrackState::kHidden) return false;
   const Eigen::Isometry3f& held = track.pose.pose;
   const Eigen::Isometry3f found = nearestEquivalentPose(pose.pose, held, symmetries_);
-  // ADD over a prefix of the samples, which are in random order: an unbiased subsample.
-  constexpr size_t kSamples = 256;
-  const size_t n = std::min(model_.points.size(), kSamples);
-  float sum = 0;
-  for (size_t i = 0; i < n; ++i) sum += (found * model_.points[i] - held * model_.points[i]).norm();
-  return n > 0 && sum > separation_ * static_cast<float>(n);
+  return meanDisplacement(model_, found, held) > separation_;
 }
 
 /// Where an accepted pose that continues no track goes: a track without a pose this frame, a new

@@ -30,7 +30,8 @@ const ParamSet<TrackingParams>& TrackingParams::schema() {
           .flag("--match-distance")
           .add(&TrackingParams::hold_hidden, "hold_hidden",
                "hold a track hidden behind a nearer surface (unpublished, followed on) rather than "
-               "lose it; a detection turning it takes it only where the confidence prefers it")
+               "lose it; a follow moving it past the instance separation is not taken, a detection "
+               "turning it only where the confidence prefers it")
           .flag("--hold-hidden");
   return schema;
 }

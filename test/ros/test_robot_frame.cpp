@@ -165,7 +165,7 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
   ASSERT_TRUE(counts_before);
 
   // Out of range: refused, the setting kept.
-  expectMinConfidence(setMinConfidence(1.5), 0.35);
+  expectMinConfidence(setMinConfidence(1.5), 0.4);
   // Above any confidence: the next frame rejects the object, still followed.
   expectMinConfidence(setMinConfidence(1.0), 1.0);
   const auto after = waitForMessage<ObjectPoseArray>(
@@ -179,7 +179,7 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
   EXPECT_EQ(statisticsCounts(*counts_after)["tracking resets"],
             statisticsCounts(*counts_before)["tracking resets"]);
 
-  expectMinConfidence(setMinConfidence(0.35), 0.35);
+  expectMinConfidence(setMinConfidence(0.4), 0.4);
   EXPECT_TRUE(waitForMessage<ObjectPoseArray>(
       "/stocs/objects", 10, [](const ObjectPoseArray& m) { return !m.objects.empty(); }));
 }

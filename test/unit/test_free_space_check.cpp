@@ -2,6 +2,7 @@
 // samples in front of it, on it, behind it, facing away, off the image and over missing pixels.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <opencv2/core.hpp>
 
@@ -68,6 +69,25 @@ TEST(FreeSpaceCheck, CountsCameraFacingSamplesInFrontOfTheMeasuredSurface) {
   EXPECT_FLOAT_EQ(check.violation(samples({{0, 1.0f}}), turned), 0.0f);
 }
 
+TEST(FreeSpaceCheck, LeavesOutSurfaceSeenEdgeOn) {
+  const OrganizedCloud cloud = wall();
+  const CameraIntrinsics k = camera();
+  // 5 cm in front of the wall on the optical axis, its normal turned from the camera about y by
+  // 88 degrees: seen edge-on, so not judged at the default grazing angle; at 90 it is.
+  ObjectModel edge_on = samples({{0, 0.95f}});
+  const float turn = 88.0f * 3.14159265f / 180.0f;
+  edge_on.normals[0] = Eigen::Vector3f(std::sin(turn), 0, -std::cos(turn));
+  const Eigen::Isometry3f identity = Eigen::Isometry3f::Identity();
+  EXPECT_EQ(FreeSpaceCheck(cloud, k, FreeSpaceParams{}).compare(edge_on, identity).seen, 0);
+  FreeSpaceParams every_facing;
+  every_facing.grazing_angle = 90;
+  EXPECT_FLOAT_EQ(FreeSpaceCheck(cloud, k, every_facing).violation(edge_on, identity), 1.0f);
+  // 80 degrees from the line of sight is within the default and judged.
+  const float within = 80.0f * 3.14159265f / 180.0f;
+  edge_on.normals[0] = Eigen::Vector3f(std::sin(within), 0, -std::cos(within));
+  EXPECT_FLOAT_EQ(FreeSpaceCheck(cloud, k, FreeSpaceParams{}).violation(edge_on, identity), 1.0f);
+}
+
 TEST(FreeSpaceCheck, ComparesTheVisibleSurfaceWithTheMeasuredOne) {
   const OrganizedCloud cloud = wall();
   const CameraIntrinsics k = camera();
@@ -91,6 +111,7 @@ TEST(FreeSpaceCheck, RejectsBadParametersAndMismatchedIntrinsics) {
   const CameraIntrinsics k = camera();
   EXPECT_THROW(FreeSpaceCheck(cloud, k, FreeSpaceParams{true, 0.0f}), InputError);
   EXPECT_THROW(FreeSpaceCheck(cloud, k, FreeSpaceParams{true, 0.5f}), InputError);
+  EXPECT_THROW(FreeSpaceCheck(cloud, k, FreeSpaceParams{true, 0.01f, 95.0f}), InputError);
   CameraIntrinsics wrong = k;
   wrong.width = 640;
   EXPECT_THROW(FreeSpaceCheck(cloud, wrong, FreeSpaceParams{}), InputError);

@@ -32,7 +32,8 @@ struct TrackingParams {
   /// A track whose follow fails only because a nearer surface hides it (an arm or another object
   /// passing in front; SegmentFollower::hiddenBehindNearerSurface) is held rather than lost: not
   /// published, followed on, and taken by a detection that turns or moves it only where the
-  /// confidence prefers that (its visible part alone fits other poses).
+  /// confidence prefers that (its visible part alone fits other poses); a follow that moves it past
+  /// the instance separation is not taken.
   bool hold_hidden = true;
 
   /// The defaults with `enabled` on: what a stream of frames (the node) starts from.

@@ -67,12 +67,6 @@ constexpr int kCellPixels = 4;
 
 constexpr size_t kExplainedPoints = 300;  // segment or surface points checked, an even subsample
 
-/// Surface seen within 5 degrees of edge-on is left out of the comparison with the measured
-/// surface: a candidate a few degrees off (as ICP leaves them) turns such a face towards the
-/// camera and onto the background's pixels, a free share of several percent that would outweigh
-/// the tie between alternatives. (The confidence keeps it: its coefficients were fitted with it.)
-const float kEdgeOnCosine = std::cos(85.0f * static_cast<float>(M_PI) / 180.0f);
-
 /// What the data says of a candidate pose: the segment's shape under it (objective), the measured
 /// surface (free space), the segment points it leaves unexplained (a handle seen where the pose
 /// has none), and the measured surface that another candidate's surface meets but its own does
@@ -136,16 +130,14 @@ class CandidateMeasure {
   }
 
  private:
-  /// `c`'s visible surface against the measured one, less its surface seen nearly edge-on
-  /// (kEdgeOnCosine): its share in free space and its confirmed cells.
+  /// `c`'s visible surface against the measured one: its share in free space and its confirmed
+  /// cells.
   void compareSurface(Candidate& c) const {
     const int width = evidence_.surface->cloud().width;
     const ObjectModel& model = context_.model;
     int seen = 0, free = 0;
     std::vector<int> confirmed;
-    evidence_.surface->visit(model, c.pose, [&](size_t i, int u, int v, SampleView view) {
-      const Eigen::Vector3f p = c.pose * model.points[i];
-      if (-(c.pose.linear() * model.normals[i]).dot(p) < kEdgeOnCosine * p.norm()) return;
+    evidence_.surface->visit(model, c.pose, [&](size_t, int u, int v, SampleView view) {
       ++seen;
       free += view == SampleView::kFree;
       if (view == SampleView::kConfirmed) confirmed.push_back(v * width + u);

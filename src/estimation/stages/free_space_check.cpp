@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
 
 #include "stocs/util/error.h"
@@ -16,7 +18,11 @@ const ParamSet<FreeSpaceParams>& FreeSpaceParams::schema() {
           .flag("--free-space")
           .add(&FreeSpaceParams::margin, "margin", "m", ParamRange::aboveUpTo(0, 0.1),
                "a model point this far in front of the measured surface is in free space")
-          .flag("--free-space-margin");
+          .flag("--free-space-margin")
+          .add(&FreeSpaceParams::grazing_angle, "grazing_angle", "deg",
+               ParamRange::aboveUpTo(0, 90),
+               "model surface seen at more than this angle from its normal is not compared")
+          .flag("--free-space-grazing-angle");
   return schema;
 }
 
@@ -26,7 +32,10 @@ void FreeSpaceParams::validate() const {
 
 FreeSpaceCheck::FreeSpaceCheck(const OrganizedCloud& cloud, const CameraIntrinsics& camera,
                                const FreeSpaceParams& params)
-    : cloud_(cloud), camera_(camera), params_(params) {
+    : cloud_(cloud),
+      camera_(camera),
+      params_(params),
+      min_facing_(std::max(0.0f, std::cos(params.grazing_angle * static_cast<float>(M_PI) / 180))) {
   params_.validate();
   if (camera.width != cloud.width || camera.height != cloud.height) {
     throw InputError(fmt::format("camera intrinsics are for {}x{} images but the cloud is {}x{}",

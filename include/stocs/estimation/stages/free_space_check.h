@@ -27,6 +27,10 @@ struct FreeSpaceParams {
   /// A model sample is in free space when the measured surface at its pixel lies more than this
   /// far behind it (metres): depth noise and model error stay below it.
   float margin = 0.01f;
+  /// Samples seen at more than this angle between their normal and the line of sight are not
+  /// compared (degrees; 90: every camera-facing sample): a refined pose is a few degrees off, which
+  /// turns a face seen edge-on towards the camera, its samples onto the background's pixels.
+  float grazing_angle = 85.0f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<FreeSpaceParams>& schema();
@@ -68,7 +72,8 @@ class FreeSpaceCheck {
                             const cv::Mat* probability = nullptr) const;
 
   /// Calls `f(sample index, u, v, SampleView)` for each model sample that faces the camera at
-  /// `pose` and projects onto pixel (u, v) with a measurement: the samples compare() counts.
+  /// `pose` within the grazing angle and projects onto pixel (u, v) with a measurement: the samples
+  /// compare() counts.
   template <class F>
   void visit(const ObjectModel& model, const Eigen::Isometry3f& pose, F&& f) const;
 
@@ -79,14 +84,18 @@ class FreeSpaceCheck {
   const OrganizedCloud& cloud_;
   const CameraIntrinsics& camera_;
   FreeSpaceParams params_;
+  float min_facing_;  ///< cosine of the grazing angle
 };
 
 template <class F>
 void FreeSpaceCheck::visit(const ObjectModel& model, const Eigen::Isometry3f& pose, F&& f) const {
   for (size_t i = 0; i < model.size(); ++i) {
     const Eigen::Vector3f p = pose * model.points[i];
-    // Samples on the far side of the object are hidden by the object itself.
-    if (p.z() <= 0 || (pose.linear() * model.normals[i]).dot(p) >= 0) continue;
+    // Samples on the far side of the object are hidden by the object itself; those seen edge-on
+    // tell nothing reliable.
+    if (p.z() <= 0 || -(pose.linear() * model.normals[i]).dot(p) <= min_facing_ * p.norm()) {
+      continue;
+    }
     const Eigen::Vector2f uv = camera_.project(p);
     const int u = static_cast<int>(std::lround(uv.x()));
     const int v = static_cast<int>(std::lround(uv.y()));

@@ -50,14 +50,14 @@ struct ConfidenceEvidence {
 /// ConfidenceEvidence::terms().
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -4.8921f;
-  float surface_confirmed = 0.6613f;
-  float free_space = -1.4422f;
-  float map_support = 1.4251f;
-  float matched = 0.4724f;
-  float consensus = 1.5534f;
+  float intercept = -6.4184f;
+  float surface_confirmed = 0.2134f;
+  float free_space = -2.3388f;
+  float map_support = 1.6756f;
+  float matched = 0.7103f;
+  float consensus = 1.1847f;
   /// Poses below this confidence are rejected: not published, not written to results.
-  float min_confidence = 0.35f;
+  float min_confidence = 0.4f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ConfidenceParams>& schema();
