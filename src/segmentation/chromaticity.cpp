@@ -61,6 +61,12 @@ void ChromaticityHistogram::add(const Colour& rgb) {
   ++samples_;
 }
 
+ChromaticityHistogram& ChromaticityHistogram::operator+=(const ChromaticityHistogram& other) {
+  for (size_t i = 0; i < bins_.size(); ++i) bins_[i] += other.bins_[i];
+  samples_ += other.samples_;
+  return *this;
+}
+
 float ChromaticityHistogram::overlap(const ChromaticityHistogram& other) const {
   if (samples_ == 0 || other.samples_ == 0) return 0;
   float shared = 0;

@@ -16,6 +16,7 @@
 #include <map>
 #include <opencv2/imgproc.hpp>
 #include <optional>
+#include <set>
 
 #include "stocs/geometry/mesh.h"
 #include "stocs/io/segmentation_inputs.h"
@@ -46,6 +47,9 @@ constexpr int kPlaneRefits = 2;
 /// An unoccluded object's visible surface spans about this share of its diameter (0.93-1.0 for the
 /// six objects of the generated development scenes, seeds 1-3).
 constexpr float kVisibleShare = 0.95f;
+/// Pixels of the full image: regions this close touch (AdjacentRegions), across the edge band left
+/// where growIntoEdges stopped at a depth step.
+constexpr int kTouchPx = 4;
 /// Neighbours PCL's depth-edge detection searches for a valid depth across a gap.
 constexpr int kEdgeSearchNeighbours = 10;
 
@@ -240,25 +244,53 @@ void growIntoEdges(const PclCloud& cloud, const cv::Mat& grow, float share, int 
   }
 }
 
-/// The extent and thinnest width of the points of `label` in `labels` (a subsample of them), and
-/// their centroid, into `region`.
-void measureRegion(const cv::Mat& labels, int label, const cv::Rect& box, int pixels,
-                   const PclCloud& cloud, DepthRegion& region) {
+/// The extent, thinnest width and centroid of a set of points.
+struct RegionShape {
+  float extent = 0;
+  float min_width = 0;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
+};
+
+/// The shape of the points in `box` whose label `inside` accepts (a subsample of them for the
+/// extent and width), `pixels` of them.
+template <class Inside>
+RegionShape measureShape(const cv::Mat& labels, Inside inside, const cv::Rect& box, int pixels,
+                         const PclCloud& cloud) {
   const size_t step = std::max<size_t>(1, static_cast<size_t>(pixels) / kExtentSamples);
   std::vector<Eigen::Vector3f> samples;
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
   size_t seen = 0;
   for (int v = box.y; v < box.y + box.height; ++v) {
     for (int u = box.x; u < box.x + box.width; ++u) {
-      if (labels.at<int>(v, u) != label) continue;
+      if (!inside(labels.at<int>(v, u))) continue;
       const Eigen::Vector3f p = cloud.at(u, v).getVector3fMap();
       sum += p;
       if (seen++ % step == 0) samples.push_back(p);
     }
   }
-  region.extent = pointSetDiameter(samples);
-  region.min_width = pointSetMinWidth(samples);
-  region.centroid = sum / static_cast<float>(std::max<size_t>(1, seen));
+  return {pointSetDiameter(samples), pointSetMinWidth(samples),
+          sum / static_cast<float>(std::max<size_t>(1, seen))};
+}
+
+/// The pairs of distinct non-zero labels of `labels` within `reach` pixels of each other, each as
+/// (smaller, larger).
+std::set<std::pair<int, int>> touchingLabels(const cv::Mat& labels, int reach) {
+  std::set<std::pair<int, int>> out;
+  for (int v = 0; v < labels.rows; ++v) {
+    for (int u = 0; u < labels.cols; ++u) {
+      const int a = labels.at<int>(v, u);
+      if (!a) continue;
+      // The half of the neighbourhood below and to the right: each pair of pixels once.
+      for (int dv = 0; dv <= reach && v + dv < labels.rows; ++dv) {
+        for (int du = dv == 0 ? 1 : -reach; du <= reach; ++du) {
+          if (u + du < 0 || u + du >= labels.cols) continue;
+          const int b = labels.at<int>(v + dv, u + du);
+          if (b && b != a) out.emplace(std::min(a, b), std::max(a, b));
+        }
+      }
+    }
+  }
+  return out;
 }
 
 /// The full image's rectangle of a rectangle of the reduced one.
@@ -304,10 +336,48 @@ void addSoftRegion(const DepthRegion& region, float score,
 
 /// How well a region's extent matches an object's expected visible extent (kVisibleShare of its
 /// diameter), in (0, 1]: a log-normal bell of deviation size_sigma.
-float sizeScore(const DepthRegion& region, const ObjectSize& size,
-                const GeometricSegmentationParams& params) {
-  const float z = std::log(region.extent / (kVisibleShare * size.diameter)) / params.size_sigma;
+float sizeScore(float extent, const ObjectSize& size, const GeometricSegmentationParams& params) {
+  const float z = std::log(extent / (kVisibleShare * size.diameter)) / params.size_sigma;
   return std::exp(-0.5f * z * z);
+}
+
+/// Whether a candidate of this extent and thinnest width can hold an object of `size` (regionFits).
+bool extentFits(float extent, float min_width, const ObjectSize& size,
+                const GeometricSegmentationParams& params) {
+  return extent >= params.min_extent_share * size.diameter &&
+         extent <= params.max_extent_share * size.diameter &&
+         min_width <= params.max_extent_share * size.min_width + params.width_margin;
+}
+
+/// A candidate's score for an object of `size` (0 when it cannot hold it): its size score, scaled
+/// by how its colours meet the object's `colours` where both have colour.
+float candidateScore(float extent, float min_width, const ChromaticityHistogram& region_colours,
+                     const ObjectSize& size, const GeometricSegmentationParams& params,
+                     const ChromaticityHistogram* colours) {
+  if (!extentFits(extent, min_width, size, params)) return 0;
+  float score = sizeScore(extent, size, params);
+  if (colours && colours->samples() > 0 && region_colours.samples() > 0) {
+    score *= 1 - params.colour_weight + params.colour_weight * region_colours.overlap(*colours);
+  }
+  return score;
+}
+
+/// The two regions of `pair` as one (mask, box, pixels, shape and colours).
+DepthRegion joinedRegion(const GeometricSegmentation& segmentation, const AdjacentRegions& pair) {
+  const DepthRegion& a = segmentation.regions[pair.first];
+  const DepthRegion& b = segmentation.regions[pair.second];
+  DepthRegion joined;
+  joined.mask = a.mask | b.mask;
+  joined.box = a.box | b.box;
+  joined.pixels = a.pixels + b.pixels;
+  joined.extent = pair.extent;
+  joined.min_width = pair.min_width;
+  joined.centroid =
+      (a.centroid * static_cast<float>(a.pixels) + b.centroid * static_cast<float>(b.pixels)) /
+      static_cast<float>(std::max(1, joined.pixels));
+  joined.colours = a.colours;
+  joined.colours += b.colours;
+  return joined;
 }
 
 }  // namespace
@@ -344,7 +414,7 @@ class ReducedFrame {
     const cv::Size size(full.width, full.height);
     out.plane_mask = fullSize(planes, stride_, size);
     out.edge_mask = fullSize(edges, stride_, size);
-    out.regions = regions(valid & ~planes & ~edges, valid & ~planes, validMask(full));
+    regions(valid & ~planes & ~edges, valid & ~planes, validMask(full), out);
     return out;
   }
 
@@ -434,9 +504,10 @@ class ReducedFrame {
   }
 
   /// The connected regions of `free` of at least the params' size, grown back over the edges
-  /// into `grow`, largest first; their masks brought to the full image where it is `valid`.
-  std::vector<DepthRegion> regions(const cv::Mat& free, const cv::Mat& grow,
-                                   const cv::Mat& valid) const {
+  /// into `grow`, largest first, their masks brought to the full image where it is `valid`; and
+  /// the pairs of them that touch.
+  void regions(const cv::Mat& free, const cv::Mat& grow, const cv::Mat& valid,
+               GeometricSegmentation& out) const {
     cv::Mat labels = largeComponents(free);
     growIntoEdges(*cloud_, grow, params_.depth_discontinuity, smoothing(), labels);
     std::map<int, std::pair<cv::Rect, int>> boxes;  // per label: bounding box, pixels
@@ -449,7 +520,7 @@ class ReducedFrame {
         ++it->second.second;
       }
     }
-    std::vector<DepthRegion> out;
+    std::vector<std::pair<DepthRegion, int>> labelled;  // each region with its label
     for (const auto& [label, shape] : boxes) {
       const auto& [box, pixels] = shape;
       DepthRegion region;
@@ -457,12 +528,29 @@ class ReducedFrame {
       const cv::Rect full = fullRect(box, stride_, valid.size());
       region.box = cv::boundingRect(region.mask(full)) + full.tl();
       region.pixels = cv::countNonZero(region.mask(region.box));
-      measureRegion(labels, label, box, pixels, *cloud_, region);
-      out.push_back(std::move(region));
+      const RegionShape measured = measureShape(
+          labels, [label = label](int l) { return l == label; }, box, pixels, *cloud_);
+      region.extent = measured.extent;
+      region.min_width = measured.min_width;
+      region.centroid = measured.centroid;
+      labelled.emplace_back(std::move(region), label);
     }
-    std::sort(out.begin(), out.end(),
-              [](const DepthRegion& a, const DepthRegion& b) { return a.pixels > b.pixels; });
-    return out;
+    std::sort(labelled.begin(), labelled.end(),
+              [](const auto& a, const auto& b) { return a.first.pixels > b.first.pixels; });
+    std::map<int, size_t> index;  // label -> index into out.regions
+    for (auto& [region, label] : labelled) {
+      index[label] = out.regions.size();
+      out.regions.push_back(std::move(region));
+    }
+    const int reach = std::max(1, kTouchPx / stride_);
+    for (const auto& [a, b] : touchingLabels(labels, reach)) {
+      const cv::Rect box = boxes[a].first | boxes[b].first;
+      const RegionShape measured = measureShape(
+          labels, [a = a, b = b](int l) { return l == a || l == b; }, box,
+          boxes[a].second + boxes[b].second, *cloud_);
+      out.adjacent.push_back({std::min(index[a], index[b]), std::max(index[a], index[b]),
+                              measured.extent, measured.min_width});
+    }
   }
 
   /// The 4-connected components of `free` (CV_32S labels), those below the params' size as 0.
@@ -528,9 +616,7 @@ ObjectSize ObjectSize::of(const std::vector<Eigen::Vector3f>& points) {
 
 bool regionFits(const DepthRegion& region, const ObjectSize& size,
                 const GeometricSegmentationParams& params) {
-  return region.extent >= params.min_extent_share * size.diameter &&
-         region.extent <= params.max_extent_share * size.diameter &&
-         region.min_width <= params.max_extent_share * size.min_width + params.width_margin;
+  return extentFits(region.extent, region.min_width, size, params);
 }
 
 cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t region,
@@ -566,13 +652,23 @@ cv::Mat objectProbability(const GeometricSegmentation& segmentation, const Objec
         fmt::format("object width {} m is not finite and non-negative", size.min_width));
   }
   cv::Mat map(segmentation.plane_mask.size(), CV_32FC1, cv::Scalar(params.outside_floor));
+  std::vector<float> scores;
   for (const DepthRegion& region : segmentation.regions) {
-    if (!regionFits(region, size, params)) continue;
-    float score = sizeScore(region, size, params);
-    if (colours && colours->samples() > 0 && region.colours.samples() > 0) {
-      score *= 1 - params.colour_weight + params.colour_weight * region.colours.overlap(*colours);
+    scores.push_back(
+        candidateScore(region.extent, region.min_width, region.colours, size, params, colours));
+    if (scores.back() > 0) {
+      addSoftRegion(region, std::max(params.min_region_score, scores.back()), params, map);
     }
-    addSoftRegion(region, std::max(params.min_region_score, score), params, map);
+  }
+  for (const AdjacentRegions& pair : segmentation.adjacent) {
+    ChromaticityHistogram joined_colours = segmentation.regions[pair.first].colours;
+    joined_colours += segmentation.regions[pair.second].colours;
+    const float score =
+        candidateScore(pair.extent, pair.min_width, joined_colours, size, params, colours);
+    if (score >= params.min_region_score &&
+        score > std::min(scores[pair.first], scores[pair.second])) {
+      addSoftRegion(joinedRegion(segmentation, pair), score, params, map);
+    }
   }
   return map;
 }

@@ -229,6 +229,33 @@ TEST(Chromaticity, ColoursWithoutTheirBrightness) {
   EXPECT_NEAR(ChromaticityHistogram::of(mesh).overlap(bright), 1.0f, 1e-3);
 }
 
+// A cup seen from above: its rim's depth step cuts its inside from its outside, each too small for
+// it. The two touch, and together they are the cup's size, so the cup's map holds both.
+TEST(GeometricSegmentation, AnObjectCutInTwoByItsOwnEdgeIsOneCandidate) {
+  constexpr int kCup = 5;
+  const float radius = 0.04f, height = 0.1f, wall = 0.004f;
+  DepthRenderer renderer(camera());
+  place(renderer, boxMesh({1.2f, 1.2f, 0.02f}), {0, 0, -0.01f}, kTable);
+  place(renderer,
+        latheMesh({{0, 0},
+                   {radius, 0},
+                   {radius, height},
+                   {radius - wall, height},
+                   {radius - wall, 0.01f},
+                   {0, 0.01f}},
+                  48),
+        {0, 0, 0}, kCup);
+  const cv::Mat depth = applyDepthNoise(renderer.depth(), renderer.normals(), camera(), {}, 7);
+  const cv::Mat cup = renderer.labels() == kCup;
+  GeometricSegmenter segmenter;
+  const GeometricSegmentation seg = segmenter.segment(depth, camera(), 1.0);
+  const auto [outside, outside_share] = bestRegion(seg, renderer.labels(), kCup);
+  ASSERT_GE(outside, 0);
+  ASSERT_LT(outside_share, 0.8) << "the cup is one region: nothing to join";
+  const ObjectSize size{std::hypot(2 * radius, height), 2 * radius};
+  EXPECT_GT(cv::mean(objectProbability(seg, size, segmenter.params()), cup)[0], 0.8);
+}
+
 TEST(GeometricSegmentation, WithoutTheEdgesTheTouchingBoxesMerge) {
   const TableScene& scene = TableScene::get();
   GeometricSegmentationParams params;

@@ -32,6 +32,8 @@ class ChromaticityHistogram {
   /// Adds a colour in [0, 1], spread over the four nearest bins; one that carries no chromaticity
   /// (unknown or too dark) is skipped.
   void add(const Colour& rgb);
+  /// Adds the colours of `other` (the histogram of two surfaces together).
+  ChromaticityHistogram& operator+=(const ChromaticityHistogram& other);
   /// Colours counted.
   int samples() const { return samples_; }
   /// The share of `other`'s colours this one also holds (histogram intersection of the two

@@ -95,12 +95,23 @@ struct DepthRegion {
   ChromaticityHistogram colours;
 };
 
+/// Two regions that touch (across an edge band at most): perhaps one object that its own edges cut
+/// in two, as a mug's rim cuts its inside from its outside.
+struct AdjacentRegions {
+  size_t first = 0, second = 0;  ///< indices into GeometricSegmentation::regions, first < second
+  float extent = 0;              ///< metres: the largest distance across both (approximate)
+  float min_width = 0;           ///< metres: their thinnest width together
+};
+
 /// What the segmentation found in one frame.
 struct GeometricSegmentation {
   std::vector<DepthRegion> regions;  ///< the object candidates, largest first
-  cv::Mat plane_mask;                ///< CV_8UC1, 255 on the supporting planes
-  cv::Mat edge_mask;                 ///< CV_8UC1, 255 on the (widened) edges
-  int planes = 0;                    ///< supporting planes removed
+  /// Every pair of regions that touch; the pair is a candidate of its own for an object it fits
+  /// better than either region alone (objectProbability).
+  std::vector<AdjacentRegions> adjacent;
+  cv::Mat plane_mask;  ///< CV_8UC1, 255 on the supporting planes
+  cv::Mat edge_mask;   ///< CV_8UC1, 255 on the (widened) edges
+  int planes = 0;      ///< supporting planes removed
 };
 
 /// Segments frame after frame; it keeps PCL's buffers from one frame to the next (allocating them
@@ -148,7 +159,8 @@ void addRegionColours(GeometricSegmentation& segmentation, const cv::Mat& bgr);
 /// The probability map of an object of `size`: the regions that can hold it (regionFits), each
 /// softened with the score of its extent against the object's (size_sigma), scaled by colour
 /// where the region and `colours` (the model's; null or empty: none) have it (colour_weight);
-/// the outside floor everywhere when none can. Throws InputError for a
+/// and each pair of adjacent regions whose union can hold it and scores higher than either region
+/// alone, as one region; the outside floor everywhere when none can. Throws InputError for a
 /// diameter that is not finite and positive, or a width that is not finite and non-negative.
 cv::Mat objectProbability(const GeometricSegmentation& segmentation, const ObjectSize& size,
                           const GeometricSegmentationParams& params,
