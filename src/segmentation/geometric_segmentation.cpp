@@ -317,19 +317,19 @@ cv::Mat fullSize(const cv::Mat& reduced, int stride, cv::Size size) {
   return grown(cv::Rect(0, 0, size.width, size.height)).clone();
 }
 
-/// Adds a region to `map` (CV_32FC1), softened as segmentation_inputs.h softens a mask of
-/// `score`: within its box and the blur's reach only, which is all the blur changes.
-void addSoftRegion(const DepthRegion& region, float score,
+/// Adds a region (`mask`, CV_8UC1 of the image's size, inside `box`) to `map` (CV_32FC1), softened
+/// as segmentation_inputs.h softens a mask of `score`: within its box and the blur's reach only,
+/// which is all the blur changes.
+void addSoftRegion(const cv::Mat& mask, const cv::Rect& box, float score,
                    const GeometricSegmentationParams& params, cv::Mat& map) {
   SegmentationInputParams soft;
   soft.mask_border_px = params.border_px;
   soft.mask_inside_floor = params.inside_floor;
   soft.mask_outside_floor = params.outside_floor;
   const int reach = static_cast<int>(std::ceil(4 * params.border_px)) + 1;
-  const cv::Rect roi = (region.box + cv::Size(2 * reach, 2 * reach) - cv::Point(reach, reach)) &
+  const cv::Rect roi = (box + cv::Size(2 * reach, 2 * reach) - cv::Point(reach, reach)) &
                        cv::Rect(cv::Point(), map.size());
-  const cv::Mat part =
-      maskProbability({InstanceMask{region.mask(roi), 0, score}}, 0, roi.size(), soft);
+  const cv::Mat part = maskProbability({InstanceMask{mask(roi), 0, score}}, 0, roi.size(), soft);
   cv::Mat target = map(roi);
   cv::max(target, part, target);
 }
@@ -360,24 +360,6 @@ float candidateScore(float extent, float min_width, const ChromaticityHistogram&
     score *= 1 - params.colour_weight + params.colour_weight * region_colours.overlap(*colours);
   }
   return score;
-}
-
-/// The two regions of `pair` as one (mask, box, pixels, shape and colours).
-DepthRegion joinedRegion(const GeometricSegmentation& segmentation, const AdjacentRegions& pair) {
-  const DepthRegion& a = segmentation.regions[pair.first];
-  const DepthRegion& b = segmentation.regions[pair.second];
-  DepthRegion joined;
-  joined.mask = a.mask | b.mask;
-  joined.box = a.box | b.box;
-  joined.pixels = a.pixels + b.pixels;
-  joined.extent = pair.extent;
-  joined.min_width = pair.min_width;
-  joined.centroid =
-      (a.centroid * static_cast<float>(a.pixels) + b.centroid * static_cast<float>(b.pixels)) /
-      static_cast<float>(std::max(1, joined.pixels));
-  joined.colours = a.colours;
-  joined.colours += b.colours;
-  return joined;
 }
 
 }  // namespace
@@ -626,7 +608,8 @@ cv::Mat regionProbability(const GeometricSegmentation& segmentation, size_t regi
                                  segmentation.regions.size()));
   }
   cv::Mat map(segmentation.plane_mask.size(), CV_32FC1, cv::Scalar(params.outside_floor));
-  addSoftRegion(segmentation.regions[region], 1.0f, params, map);
+  const DepthRegion& r = segmentation.regions[region];
+  addSoftRegion(r.mask, r.box, 1.0f, params, map);
   return map;
 }
 
@@ -657,7 +640,8 @@ cv::Mat objectProbability(const GeometricSegmentation& segmentation, const Objec
     scores.push_back(
         candidateScore(region.extent, region.min_width, region.colours, size, params, colours));
     if (scores.back() > 0) {
-      addSoftRegion(region, std::max(params.min_region_score, scores.back()), params, map);
+      addSoftRegion(region.mask, region.box, std::max(params.min_region_score, scores.back()),
+                    params, map);
     }
   }
   for (const AdjacentRegions& pair : segmentation.adjacent) {
@@ -667,7 +651,9 @@ cv::Mat objectProbability(const GeometricSegmentation& segmentation, const Objec
         candidateScore(pair.extent, pair.min_width, joined_colours, size, params, colours);
     if (score >= params.min_region_score &&
         score > std::min(scores[pair.first], scores[pair.second])) {
-      addSoftRegion(joinedRegion(segmentation, pair), score, params, map);
+      const DepthRegion& a = segmentation.regions[pair.first];
+      const DepthRegion& b = segmentation.regions[pair.second];
+      addSoftRegion(a.mask | b.mask, a.box | b.box, score, params, map);
     }
   }
   return map;
