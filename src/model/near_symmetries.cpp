@@ -105,11 +105,15 @@ void addIfAlternative(const ObjectModel& model, const KnnIndex& index,
     shift = meanDistance(model, index, motion);
   }
   if (shift >= kAlternativeShare * model.sampling_radius || seen(motion)) return;
-  const Eigen::AngleAxisf rotation(motion.linear());
-  out.push_back({motion, rotation.axis(), rotation.angle(), shift});
+  out.push_back(shapeAlternative(motion, shift));
 }
 
 }  // namespace
+
+ShapeAlternative shapeAlternative(const Eigen::Isometry3f& motion, float shift) {
+  const Eigen::AngleAxisf rotation(motion.linear());
+  return {motion, rotation.axis(), rotation.angle(), shift};
+}
 
 std::vector<ShapeAlternative> findShapeAlternatives(const ObjectModel& model) {
   std::vector<ShapeAlternative> out;

@@ -4,6 +4,7 @@
 // files that include this header pay its compile time.
 
 #include <Eigen/Core>
+#include <limits>
 #include <nanoflann.hpp>
 #include <vector>
 
@@ -14,6 +15,15 @@ class KnnIndex {
   explicit KnnIndex(const std::vector<Eigen::Vector3f>& points)
       : adaptor_{points}, tree_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(10)) {
     tree_.buildIndex();
+  }
+
+  /// The squared distance from q to its nearest point, or infinity for an empty set; no
+  /// allocation, for queries in inner loops.
+  float nearestDistanceSq(const Eigen::Vector3f& q) const {
+    size_t index = 0;
+    float distance_sq = std::numeric_limits<float>::infinity();
+    if (!adaptor_.points.empty()) tree_.knnSearch(q.data(), 1, &index, &distance_sq);
+    return distance_sq;
   }
 
   /// Indices of the k nearest points to q (fewer if the set is smaller), nearest first.

@@ -33,6 +33,9 @@ struct ShapeAlternative {
   float shift = 0;  ///< metres: mean surface distance of the moved samples (as NearSymmetry)
 };
 
+/// `motion` as a shape alternative: its rotation's axis and angle filled in.
+ShapeAlternative shapeAlternative(const Eigen::Isometry3f& motion, float shift);
+
 /// Turns by multiples of 30 degrees about the samples' principal axes through their centre, kept
 /// when the turned samples lie within the sampling radius of the surface on average, else aligned
 /// again onto the model by a few point-to-point ICP steps (an axis off the centre, as a mug's body

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "stocs/estimation/pose_proximity.h"
 #include "stocs/estimation/stages/colour_agreement.h"
 #include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/geometry/knn_index.h"
@@ -163,10 +164,7 @@ class CandidateMeasure {
   }
 
   bool nearModel(const Eigen::Vector3f& in_model) const {
-    std::vector<size_t> nearest;
-    std::vector<float> squared;
-    model_index_.knn(in_model, 1, nearest, squared);
-    return !nearest.empty() && squared[0] <= reach_ * reach_;
+    return model_index_.nearestDistanceSq(in_model) <= reach_ * reach_;
   }
 
   float unexplained(const Eigen::Isometry3f& pose, int region) const {
@@ -206,6 +204,26 @@ std::vector<const ShapeAlternative*> distinctAlternatives(const PreparedModel& m
   return out;
 }
 
+/// Screening steps after which an alternative that ICP has brought onto a candidate before it (the
+/// instance, or an alternative from another turn) is dropped: it would follow that one's steps.
+constexpr int kFirstLook = 3;
+
+/// `candidates` less those that lie within the sampling radius (no model point farther) of one
+/// before them: a box's turns by a third or a quarter mostly slide back onto the instance or its
+/// half turns.
+void dropRepeats(std::vector<Candidate>& candidates, const PoseProximity& proximity,
+                 float distance) {
+  std::vector<Candidate> kept;
+  kept.reserve(candidates.size());
+  for (Candidate& c : candidates) {
+    const bool repeat = std::any_of(kept.begin(), kept.end(), [&](const Candidate& k) {
+      return proximity.within(k.pose, c.pose, distance);
+    });
+    if (!repeat) kept.push_back(std::move(c));
+  }
+  candidates = std::move(kept);
+}
+
 /// `c` refined by ICP on to `steps` steps in all; adds the steps taken to `taken`.
 void refine(Candidate& c, int region, int steps, const RefinementContext& context, long& taken) {
   if (!context.icp) return;
@@ -230,13 +248,7 @@ void judge(std::vector<Candidate>& candidates) {
 
 /// The motion (model frame) from `from` to `to`, as a shape alternative.
 ShapeAlternative motionBetween(const Eigen::Isometry3f& from, const Candidate& to) {
-  ShapeAlternative a;
-  a.motion = from.inverse() * to.pose;
-  const Eigen::AngleAxisf rotation(a.motion.linear());
-  a.axis = rotation.axis();
-  a.angle = rotation.angle();
-  a.shift = to.shift;
-  return a;
+  return shapeAlternative(from.inverse() * to.pose, to.shift);
 }
 
 /// Index of the candidate to keep: 0, the instance itself, unless an alternative is judged better
@@ -302,23 +314,29 @@ void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const 
 
 void chooseFor(InstancePose& instance, const PreparedModel& model,
                const std::vector<const ShapeAlternative*>& alternatives, const LatheAxis* lathe,
-               const RefinementContext& context, const CandidateMeasure& measure, int threads,
-               long& steps) {
+               const RefinementContext& context, const CandidateMeasure& measure,
+               const PoseProximity& proximity, int threads, long& steps) {
   std::vector<Candidate> candidates{Candidate(instance.pose)};
   for (const ShapeAlternative* a : alternatives) {
     candidates.emplace_back(instance.pose * a->motion, a->shift);
   }
-  // The alternatives take the screening steps of the instance's own candidates; the one kept, the
-  // rest of them.
+  // The alternatives take the screening steps of the instance's own candidates (those that come
+  // onto another candidate on the way are dropped); the one kept, the rest of them. 0 is refined.
   const int screening = context.icp ? firstSteps(context.icp->params(), candidates.size()) : 0;
   long taken = 0;
+  for (const int until : {std::min(kFirstLook, screening), screening}) {
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : taken)
-  for (size_t k = 0; k < candidates.size(); ++k) {
-    if (k > 0) refine(candidates[k], instance.region, screening, context, taken);  // 0 is refined
-    measure(candidates[k], instance.region);
+    for (size_t k = 1; k < candidates.size(); ++k) {
+      refine(candidates[k], instance.region, until, context, taken);
+    }
+    dropRepeats(candidates, proximity, context.model.sampling_radius);
   }
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t k = 0; k < candidates.size(); ++k) measure(candidates[k], instance.region);
   const ConfirmedSurface surface = measure.confirmedSurface(candidates);
-  for (Candidate& c : candidates) {
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    Candidate& c = candidates[k];
     if (fits(c, candidates.front())) c.left_out = measure.leftOut(c, surface);  // else judged -1
   }
   judge(candidates);
@@ -365,8 +383,9 @@ void chooseAmongAlternatives(std::vector<InstancePose>& instances, const Prepare
   if (alternatives.empty()) return;
   const CandidateMeasure measure(segment, context, evidence);
   const LatheAxis* lathe = turnsBetweenSteps(model) ? &*model.lathe : nullptr;
+  const PoseProximity proximity(model.model);
   for (InstancePose& instance : instances) {
-    chooseFor(instance, model, alternatives, lathe, context, measure, threads, steps);
+    chooseFor(instance, model, alternatives, lathe, context, measure, proximity, threads, steps);
   }
 }
 
