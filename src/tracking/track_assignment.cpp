@@ -117,12 +117,37 @@ std::vector<int> TrackAssignment::assign(const PoseEstimate& found) {
   return taken;
 }
 
+InstancePose TrackAssignment::keepingTurn(const InstancePose& pose,
+                                          const Eigen::Isometry3f& previous) const {
+  InstancePose out = pose;
+  out.pose = nearestEquivalentPose(pose.pose, previous, symmetries_);
+  float nearest = meanDisplacement(model_, out.pose, previous);
+  const ShapeAlternative* kept = nullptr;
+  for (const ShapeAlternative& a : pose.ambiguous) {
+    const Eigen::Isometry3f turned =
+        nearestEquivalentPose(pose.pose * a.motion, previous, symmetries_);
+    const float d = meanDisplacement(model_, turned, previous);
+    if (d < nearest) {
+      nearest = d;
+      out.pose = turned;
+      kept = &a;
+    }
+  }
+  if (kept) {
+    // The alternatives again as motions from the turn kept: the detection's own pose among them.
+    const Eigen::Isometry3f back = kept->motion.inverse();
+    out.ambiguous = {shapeAlternative(back, kept->shift)};
+    for (const ShapeAlternative& a : pose.ambiguous) {
+      if (&a != kept) out.ambiguous.push_back(shapeAlternative(back * a.motion, a.shift));
+    }
+  }
+  return out;
+}
+
 void TrackAssignment::take(int k, const InstancePose& pose) {
   Track& track = tracks_[k];
   moved_ = moved_ || !samePlace().samePlace(track.pose.pose, pose.pose);
-  const Eigen::Isometry3f previous = track.pose.pose;
-  track.pose = pose;
-  track.pose.pose = nearestEquivalentPose(pose.pose, previous, symmetries_);
+  track.pose = keepingTurn(pose, track.pose.pose);
   track.state = TrackState::kRedetected;
   track.motion.stop();  // a detection says nothing of the motion
   settled_[k] = 1;

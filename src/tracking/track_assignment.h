@@ -42,6 +42,11 @@ class TrackAssignment {
   /// Whether track k is hidden and `pose`, up to declared symmetries, moves its held pose's model
   /// points by more than the instance separation on average (ADD).
   bool turnsHidden(int k, const InstancePose& pose) const;
+  /// `pose` as the track at `previous` takes it: of the pose and the turns it names as fitting as
+  /// well (InstancePose::ambiguous), each up to declared symmetries, the one nearest `previous`
+  /// (ADD), with the turns named from it. Where the data cannot tell turns apart, the track keeps
+  /// its own instead of alternating with each detection.
+  InstancePose keepingTurn(const InstancePose& pose, const Eigen::Isometry3f& previous) const;
   /// Track k's confidence with its consensus among the bases of the poses being assigned.
   float challenged(int k) const;
   /// The model's same-place test, built on first use: a search or detection that found no

@@ -464,6 +464,48 @@ TEST_F(TrackerTest, AMergedDetectionReplacesATrackedPoseOnlyWhenPreferred) {
   EXPECT_TRUE(tracker.tracks()[0].pose.pose.isApprox(far));
 }
 
+TEST_F(TrackerTest, ADetectionThatFitsTheTracksTurnAsWellKeepsIt) {
+  // The detection, which the confidence prefers, is the tracked block turned by a half about its
+  // long axis and names the tracked turn as fitting as well (a box whose print is out of view):
+  // the track keeps its turn and names the detection's. One that names no such turn replaces it.
+  const Frame frame = frameAt(truth_);
+  const CameraIntrinsics camera = frameCamera(frame);  // the input points to it
+  const PipelineParams& params = estimator_.params();
+  const ObjectInput in = objectInput(frame, camera, {"block", model_.get()}, params);
+  const Eigen::Vector3f centre = PoseProximity(model_->model).centre();
+  Eigen::Isometry3f half_turn = Eigen::Isometry3f::Identity();  // model frame, about the centre
+  half_turn.linear() =
+      Eigen::AngleAxisf(static_cast<float>(M_PI), Eigen::Vector3f::UnitX()).toRotationMatrix();
+  half_turn.translation() = centre - half_turn.linear() * centre;
+  // The track's pose after a detection at its turn, naming `ambiguous`.
+  const auto merged = [&](const std::vector<ShapeAlternative>& ambiguous,
+                          Eigen::Isometry3f& turned) {
+    ObjectTracker tracker{TrackingParams{}};
+    tracker.update(in, 0.0);
+    tracker.update(in, kFramePeriod);
+    EXPECT_EQ(tracker.tracks().at(0).state, TrackState::kTracked);
+    turned = tracker.tracks()[0].pose.pose * half_turn;
+    ConfidenceEvidence better = tracker.tracks()[0].pose.evidence;
+    better.surface_confirmed = better.matched = better.map_support = 1;
+    better.free_space = 0;
+    PoseEstimate detection = detectionOf(turned, better, turned, params.confidence);
+    detection.instances[0].ambiguous = ambiguous;
+    EXPECT_EQ(tracker.merge(detection, *model_, params), std::vector<int>{0});
+    return tracker.tracks()[0].pose;
+  };
+  Eigen::Isometry3f turned;
+  const InstancePose kept = merged({shapeAlternative(half_turn.inverse(), 0.001f)}, turned);
+  EXPECT_TRUE((kept.pose * half_turn).isApprox(turned, 1e-4f)) << "the track took the turn";
+  ASSERT_EQ(kept.ambiguous.size(), 1u);
+  EXPECT_TRUE((kept.pose * kept.ambiguous[0].motion).isApprox(turned, 1e-4f));
+  EXPECT_NEAR(kept.ambiguous[0].angle, static_cast<float>(M_PI), 1e-3f);
+  EXPECT_EQ(kept.ambiguous[0].shift, 0.001f);
+
+  const InstancePose replaced = merged({}, turned);
+  EXPECT_TRUE(replaced.pose.isApprox(turned));
+  EXPECT_TRUE(replaced.ambiguous.empty());
+}
+
 TEST_F(TrackerTest, AHiddenTrackIsHeldAgainstADetectionThatTurnsIt) {
   ObjectTracker tracker{TrackingParams{}};
   const PipelineParams& params = estimator_.params();
