@@ -4,11 +4,14 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <link.h>
+#include <poll.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -23,6 +26,15 @@ namespace stocs::detail {
 namespace {
 
 constexpr int kReplyFd = 3;  // where stocs_mesh_reader writes its reply
+
+/// How long the reader may take: a malformed file can make assimp work for minutes (a COLLADA
+/// array declaring billions of values); a large mesh gets longer.
+std::chrono::milliseconds readerDeadline(const std::string& path) {
+  std::error_code ec;
+  const auto bytes = std::filesystem::file_size(path, ec);
+  const auto megabytes = ec ? 0 : static_cast<long>(bytes >> 20);
+  return std::chrono::seconds(20) + std::chrono::seconds(1) * megabytes;
+}
 
 /// $STOCS_MESH_READER, else stocs_mesh_reader beside the shared library or program that holds
 /// this function (the build puts and installs it there).
@@ -57,13 +69,21 @@ pid_t startReader(const std::string& program, const std::string& path, const std
   return error == 0 ? pid : -1;
 }
 
-std::vector<char> readAll(int fd) {
-  std::vector<char> out;
+/// Everything written to `fd` until its writer closes it; false when `deadline` passed first.
+bool readAll(int fd, std::chrono::milliseconds deadline, std::vector<char>& out) {
+  const auto end = std::chrono::steady_clock::now() + deadline;
   char buffer[65536];
   for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        end - std::chrono::steady_clock::now());
+    if (left.count() <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = poll(&p, 1, static_cast<int>(left.count()));
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) return false;
     const ssize_t n = read(fd, buffer, sizeof(buffer));
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return out;
+    if (n <= 0) return true;
     out.insert(out.end(), buffer, buffer + n);
   }
 }
@@ -122,8 +142,16 @@ MeshData readAssimpModelInChild(const std::string& path, const std::string& ext)
                                        program, strerror(error)));
   }
   // Read before waiting: a large mesh fills the pipe, and the reader waits for it to drain.
-  const std::vector<char> reply = readAll(fds[0]);
+  std::vector<char> reply;
+  const std::chrono::milliseconds deadline = readerDeadline(path);
+  const bool ended = readAll(fds[0], deadline, reply);
   close(fds[0]);
+  if (!ended) {
+    kill(pid, SIGKILL);
+    waitFor(pid);
+    throw modelError(path, fmt::format("the mesh reader took more than {} s reading this file",
+                                       deadline.count() / 1000));
+  }
   return parseReply(path, reply, waitFor(pid));
 }
 

@@ -16,9 +16,11 @@ namespace stocs::detail {
 /// readAssimpModel(path, ext), run in stocs_mesh_reader: returns its mesh or rethrows its
 /// InputError. A reader killed by a signal or exiting otherwise gives InputError "model <path>:
 /// the mesh reader crashed (signal 11: Segmentation fault) reading this file" or "... failed (exit
-/// code N) ...", one that cannot be started "model <path>: cannot start the mesh reader <program>:
-/// <why>". The program is $STOCS_MESH_READER when set, else stocs_mesh_reader in the folder of the
-/// library holding this code (the program's own folder when the core is linked statically).
+/// code N) ...", one that takes longer than 20 s plus 1 s per megabyte of the file is killed:
+/// "... the mesh reader took more than N s reading this file"; one that cannot be started "model
+/// <path>: cannot start the mesh reader <program>: <why>". The program is $STOCS_MESH_READER when
+/// set, else stocs_mesh_reader in the folder of the library holding this code (the program's own
+/// folder when the core is linked statically).
 MeshData readAssimpModelInChild(const std::string& path, const std::string& ext);
 
 }  // namespace stocs::detail
