@@ -134,8 +134,9 @@ InstancePose TrackAssignment::keepingTurn(const InstancePose& pose,
     }
   }
   if (kept) {
-    // The alternatives again as motions from the turn kept: the detection's own pose among them.
-    const Eigen::Isometry3f back = kept->motion.inverse();
+    // The alternatives again as motions from the pose taken (a declared symmetry included): the
+    // detection's own pose among them.
+    const Eigen::Isometry3f back = out.pose.inverse() * pose.pose;
     out.ambiguous = {shapeAlternative(back, kept->shift)};
     for (const ShapeAlternative& a : pose.ambiguous) {
       if (&a != kept) out.ambiguous.push_back(shapeAlternative(back * a.motion, a.shift));
