@@ -15,7 +15,7 @@
   lookalike_metrics.py binlog LOG... : the same from the logs of the runs, whose ADD-S is measured
       on the model's surface samples (more lenient for a box: a box turned by 38 degrees about its
       face normal can pass)
-t is 0.4 (min_confidence) unless STOCS_T is set. Each targets CSV is `stocs eval --targets-csv`
+t is 0.25 (the default min_confidence) unless STOCS_T is set. Each targets CSV is `stocs eval --targets-csv`
 of one dataset, beside its dataset folder (named in the CSV's dataset column).
 """
 import csv
@@ -26,7 +26,7 @@ import sys
 
 import numpy as np
 
-T = float(os.environ.get("STOCS_T", "0.4"))
+T = float(os.environ.get("STOCS_T", "0.25"))
 
 
 def visible_objects(dataset, scene, im):

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "frame_internal.h"
+#include "stocs/estimation/stages/pose_confidence.h"
 
 namespace stocs {
 namespace {
@@ -33,7 +34,22 @@ FrameExplainer::FrameExplainer(const Frame& frame, const CameraIntrinsics& camer
 
 std::vector<ExplainedPose> FrameExplainer::explain(const std::vector<PoseEstimate*>& estimates) {
   collect(estimates);
-  return explainPoses(poses_, visibility_, params_.explanation, frame_.maps_name_objects);
+  std::vector<float> before;
+  for (const FramePose& p : poses_) before.push_back(p.pose->evidence.explained);
+  std::vector<ExplainedPose> explained =
+      explainPoses(poses_, visibility_, params_.explanation, frame_.maps_name_objects);
+  // The confidence reads the share others explain: poses whose share changed are judged again;
+  // the rejected ones keep their reason (`explained by`).
+  for (size_t i = 0; i < poses_.size(); ++i) {
+    InstancePose& pose = *poses_[i].pose;
+    if (pose.evidence.explained == before[i]) continue;
+    if (pose.accepted) {
+      judgePose(pose, params_.confidence);
+    } else {
+      pose.confidence = params_.confidence.confidence(pose.evidence);
+    }
+  }
+  return explained;
 }
 
 std::vector<ExplainedPose> FrameExplainer::explain(std::vector<ObjectResult>& results) {

@@ -33,6 +33,7 @@ void PipelineParams::validate() const {
 void judgeInstance(InstancePose& pose, const ObjectModel& model, const FreeSpaceCheck* surface,
                    const cv::Mat& probability, const ConfidenceParams& params) {
   ConfidenceEvidence& e = pose.evidence;
+  e.explained = 0;  // judged alone; the frame explanation sets it
   if (pose.lcp.facing > 0) {
     e.matched = std::min(1.0f, static_cast<float>(pose.lcp.matched) / pose.lcp.facing);
   }

@@ -164,8 +164,9 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
       waitForMessage<diagnostic_msgs::DiagnosticArray>("/stocs/statistics", 5);
   ASSERT_TRUE(counts_before);
 
-  // Out of range: refused, the setting kept.
-  expectMinConfidence(setMinConfidence(1.5), 0.4);
+  // Out of range: refused, the setting kept (the default, config/default.yaml's).
+  constexpr double kDefault = 0.25;
+  expectMinConfidence(setMinConfidence(1.5), kDefault);
   // Above any confidence: the next frame rejects the object, still followed.
   expectMinConfidence(setMinConfidence(1.0), 1.0);
   const auto after = waitForMessage<ObjectPoseArray>(
@@ -179,7 +180,7 @@ TEST_F(RobotFrame, ARuntimeMinConfidenceRejectsTheObjectWithoutATrackingReset) {
   EXPECT_EQ(statisticsCounts(*counts_after)["tracking resets"],
             statisticsCounts(*counts_before)["tracking resets"]);
 
-  expectMinConfidence(setMinConfidence(0.4), 0.4);
+  expectMinConfidence(setMinConfidence(kDefault), kDefault);
   EXPECT_TRUE(waitForMessage<ObjectPoseArray>(
       "/stocs/objects", 10, [](const ObjectPoseArray& m) { return !m.objects.empty(); }));
 }

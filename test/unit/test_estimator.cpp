@@ -173,13 +173,57 @@ TEST_F(EstimatorTest, AnObjectWhosePoseAnotherExplainsIsSearchedForAgainElsewher
   EXPECT_TRUE(found.pose.isApprox(twin));
   EXPECT_EQ(calls, 3);  // the block, the twin, the twin on its map without the block
 
-  // Without the second search, or where it finds nothing, the twin keeps its explained pose.
+  // Without the second search, or where it finds nothing, the twin keeps its explained pose; its
+  // confidence reads the share explained.
   results = estimateFrame(frame, objects, PipelineParams{}, placing);
-  EXPECT_EQ(results[1].estimate.best().rejection, "explained by block 0");
+  const InstancePose& explained = results[1].estimate.best();
+  EXPECT_EQ(explained.rejection, "explained by block 0");
+  EXPECT_GT(explained.evidence.explained, 0.5f);
+  EXPECT_FLOAT_EQ(explained.confidence, ConfidenceParams{}.confidence(explained.evidence));
   frame.probabilities["twin"].setTo(0.0f, labels == 2);
   results = estimateFrame(frame, objects, again, placing);
   EXPECT_TRUE(results[1].estimate.best().pose.isApprox(truth_));
   EXPECT_EQ(results[1].estimate.best().rejection, "explained by block 0");
+}
+
+TEST_F(EstimatorTest, APoseWhoseSurfaceAnotherPartlyExplainsIsJudgedAgainWithThatShare) {
+  // The block at truth_, and a twin posed on it slid by 6 cm along its length, whose map holds the
+  // block's pixels more strongly: the twin explains the part of the block's surface it covers.
+  const CameraIntrinsics camera = test::testCamera();
+  cv::Mat labels;
+  test::renderDepth({{asymmetricMesh(), truth_}}, camera, &labels);
+  cv::Mat twin_map(labels.size(), CV_32FC1, cv::Scalar(0));
+  twin_map.setTo(0.95f, labels == 1);
+  frame_.probabilities["twin"] = twin_map;
+  const Eigen::Isometry3f slid = truth_ * Eigen::Translation3f(0.06f, 0, 0);
+
+  Estimator estimator(PipelineParams{}, ModelCache(test::scratchDir("estimator_cache")));
+  estimator.addObject("block", model_file_);
+  const std::vector<FrameObject> objects = {{"block", estimator.model("block").get()},
+                                            {"twin", estimator.model("block").get()}};
+  const ConfidenceParams confidence;
+  const ObjectEstimator placing = [&](const ObjectInput& in) {
+    PoseEstimate e;
+    InstancePose& pose = e.instances.emplace_back();
+    pose.pose = in.probability == &frame_.probabilities.at("twin") ? slid : truth_;
+    pose.evidence.surface_confirmed = pose.evidence.matched = pose.evidence.consensus = 1;
+    pose.evidence.map_support = 0.9f;
+    judgePose(pose, confidence);
+    return e;
+  };
+  const float alone =
+      placing(objectInput(frame_, camera, {"block", objects[0].model}, PipelineParams{}))
+          .best()
+          .confidence;
+  const std::vector<ObjectResult> results =
+      estimateFrame(frame_, objects, PipelineParams{}, placing);
+  const InstancePose& block = results[0].estimate.best();
+  EXPECT_GT(block.evidence.explained, 0.1f);
+  EXPECT_LE(block.evidence.explained, 0.5f);
+  EXPECT_FLOAT_EQ(block.confidence, confidence.confidence(block.evidence));
+  EXPECT_LT(block.confidence, alone);
+  // The twin holds the pixels both confirm; only its splats' fringe off both maps ties.
+  EXPECT_LT(results[1].estimate.best().evidence.explained, block.evidence.explained);
 }
 
 }  // namespace

@@ -215,12 +215,12 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
                                  (root_ / "r.csv").string(),
                              out),
             2);
-  EXPECT_NE(out.find("r.csv:2: expected 14 comma-separated numbers and a covariance of 36"),
+  EXPECT_NE(out.find("r.csv:2: expected 15 comma-separated numbers and a covariance of 36"),
             std::string::npos)
       << out;
   // The pose's confidence evidence and confidence, each in [0, 1], for `stocs calibrate`.
-  for (const char* column :
-       {"surface_confirmed", "free_space", "map_support", "matched", "consensus", "confidence"}) {
+  for (const char* column : {"surface_confirmed", "free_space", "map_support", "matched",
+                             "consensus", "explained", "confidence"}) {
     EXPECT_GE(number(rows[0], column), 0) << column;
     EXPECT_LE(number(rows[0], column), 1) << column;
   }
@@ -257,14 +257,14 @@ void writeLabelledRun(const std::filesystem::path& objects, const std::filesyste
                       int rows) {
   std::ofstream o(objects), t(targets);
   o << "scene_id,im_id,obj_id,found,seconds,cpu_seconds,segment_points,hypotheses,"
-       "surface_confirmed,free_space,map_support,matched,consensus,confidence,"
+       "surface_confirmed,free_space,map_support,matched,consensus,explained,confidence,"
        "covariance\n";
   t << "results,dataset,scene_id,im_id,obj_id,found,adds_success\n";
   std::string zeros;  // a covariance of 36 zeros
   for (int k = 0; k < 36; ++k) zeros += k ? " 0" : "0";
   for (int i = 0; i < rows; ++i) {
     const double x = (i + 0.5) / rows;
-    o << "0," << i << ",1,1,0.01,0.01,100,10," << x << ",0.5,0.5,0.5,0.5,0," << zeros << "\n";
+    o << "0," << i << ",1,1,0.01,0.01,100,10," << x << ",0.5,0.5,0.5,0.5,0,0," << zeros << "\n";
     t << "r,d,0," << i << ",1,1," << ((x > 0.5) != (i % 10 == 0) ? 1 : 0) << "\n";
   }
 }
@@ -310,7 +310,7 @@ TEST_F(EvalCliTest, CalibrateFitsLabelledRunsAndNamesBadInputs) {
   // A per-object file of the format before the confidence (8 columns).
   std::ofstream(root_ / "old.csv") << "scene_id,im_id,obj_id,found,seconds,cpu_seconds,"
                                       "segment_points,hypotheses\n0,0,1,1,0.1,0.1,100,10\n";
-  refused("old.csv", "t.csv", "old.csv:2: expected 14 comma-separated numbers");
+  refused("old.csv", "t.csv", "old.csv:2: expected 15 comma-separated numbers");
   // Only right poses: nothing to tell them from.
   writeLabelledRun(root_ / "one.csv", root_ / "one_t.csv", 2);
   std::ofstream(root_ / "one_t.csv") << "scene_id,im_id,obj_id,adds_success\n0,0,1,1\n0,1,1,1\n";

@@ -84,6 +84,9 @@ TEST_F(FrameExplanationTest, AnAbsentLookAlikeOnThePresentBoxIsExplainedByIt) {
   EXPECT_TRUE(box.accepted);
   EXPECT_FALSE(small.accepted);
   EXPECT_EQ(small.rejection, "explained by box 0");
+  // The confidence's evidence: the share explained at the rejection; none left for the box.
+  EXPECT_GT(small.evidence.explained, 0.5f);
+  EXPECT_EQ(box.evidence.explained, 0.0f);
 }
 
 TEST_F(FrameExplanationTest, TwoPosesOfOneBoxInABinKeepOne) {
@@ -102,6 +105,10 @@ TEST_F(FrameExplanationTest, TwoPosesOfOneBoxInABinKeepOne) {
   EXPECT_TRUE(other.accepted);  // its neighbour shares only its outline
   EXPECT_FALSE(second.accepted);
   EXPECT_EQ(second.rejection, "explained by box 0");
+  // Touching neighbours each explain a little of the other: their outlines.
+  EXPECT_GT(first.evidence.explained, 0.0f);
+  EXPECT_LT(first.evidence.explained, 0.25f);
+  EXPECT_LT(other.evidence.explained, 0.25f);
 }
 
 TEST_F(FrameExplanationTest, WhereTwoObjectsMapsMarkAlikeThePoseThatFitsBetterHoldsTheSurface) {
@@ -127,9 +134,12 @@ TEST_F(FrameExplanationTest, TwoSeparateObjectsAreBothKept) {
   const cv::Mat map_a = map(0, 0.9f), map_b = map(1, 0.8f);
   InstancePose pa = instance(a, 0.6f), pb = instance(b, 0.99f);
   std::vector<FramePose> poses = {{"a", 0, &box_, &map_a, &pa}, {"b", 0, &box_, &map_b, &pb}};
+  pa.evidence.explained = 0.3f;  // from an earlier frame: counted again
   explain(poses);
   EXPECT_TRUE(pa.accepted);
   EXPECT_TRUE(pb.accepted);
+  EXPECT_EQ(pa.evidence.explained, 0.0f);
+  EXPECT_EQ(pb.evidence.explained, 0.0f);
 }
 
 TEST_F(FrameExplanationTest, OnlyAcceptedPosesExplainAndDisabledChangesNothing) {

@@ -20,6 +20,7 @@ ConfidenceParams model() {
   p.map_support = 2;
   p.matched = 1;
   p.consensus = 1;
+  p.explained = -3;
   p.min_confidence = 0.5f;
   return p;
 }
@@ -36,9 +37,10 @@ TEST(PoseConfidence, IsTheLogisticOfTheWeightedTerms) {
   e.map_support = 0.8f;
   e.matched = 0.6f;
   e.consensus = 1;
-  // The four shares enter as log-odds, consensus as it is.
-  const double z =
-      -4 + 6 * logOdds(0.9) - 8 * logOdds(0.05) + 2 * logOdds(0.8) + 1 * logOdds(0.6) + 1;
+  e.explained = 0.2f;
+  // The shares enter as log-odds, consensus as it is.
+  const double z = -4 + 6 * logOdds(0.9) - 8 * logOdds(0.05) + 2 * logOdds(0.8) + 1 * logOdds(0.6) +
+                   1 - 3 * logOdds(0.2);
   EXPECT_NEAR(model().confidence(e), 1 / (1 + std::exp(-z)), 1e-6);
   EXPECT_EQ(ConfidenceEvidence::fromFeatures(e.features()).features(), e.features());
 }

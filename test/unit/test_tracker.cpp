@@ -434,8 +434,8 @@ TEST_F(TrackerTest, AMergedDetectionReplacesATrackedPoseOnlyWhenPreferred) {
   const Eigen::Isometry3f near = moved(truth_, 3, 0);  // the track's place
   Eigen::Isometry3f far = truth_;
   far.translation().x() += model_->model.diameter;  // beyond the match distance
-  ConfidenceEvidence worse = held;                  // less of the surface confirmed
-  worse.surface_confirmed *= 0.8f;
+  ConfidenceEvidence worse = held;                  // less of the model matched
+  worse.matched *= 0.9f;
   // At the track's place, with bases that agree with the tracked pose as well: its confidence is
   // higher than the tracked pose's only through the consensus, which the tracked pose shares.
   const PoseEstimate same_place = detectionOf(near, worse, near, params.confidence);
@@ -515,8 +515,8 @@ TEST_F(TrackerTest, AHiddenTrackIsHeldAgainstADetectionThatTurnsIt) {
   const ObjectInput behind = objectInput(hidden, camera, {"block", model_.get()}, params);
   tracker.update(seen, 0.0);
   tracker.update(seen, kFramePeriod);
-  ConfidenceEvidence worse = tracker.tracks().at(0).pose.evidence;  // less surface confirmed
-  worse.surface_confirmed *= 0.8f;
+  ConfidenceEvidence worse = tracker.tracks().at(0).pose.evidence;  // less of the model matched
+  worse.matched *= 0.9f;
   tracker.followOnly(behind, kFramePeriod);
   ASSERT_EQ(tracker.tracks().at(0).state, TrackState::kHidden);
   // Turned a quarter about the camera's axis at the same place (as the visible part of a partly

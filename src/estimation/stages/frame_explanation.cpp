@@ -153,21 +153,24 @@ Explained explainedShare(const std::vector<Claim>& claims, int i, const ClaimsPe
 }
 
 /// The living claim most explained by others above the limit, the lower confidence on a tie
-/// (first: -1 if none), and the claim explaining most of it. Most redundant first: a pose slid
-/// across two boxes goes before the two right poses, each of which it covers by half.
-std::pair<int, int> mostExplained(const std::vector<Claim>& claims, const ClaimsPerPixel& table,
-                                  float max_share, bool maps_name_objects) {
-  std::pair<int, int> worst{-1, -1};
-  float worst_share = 0;
+/// (claim -1 if none), and how it is explained. Most redundant first: a pose slid across two
+/// boxes goes before the two right poses, each of which it covers by half.
+struct MostExplained {
+  int claim = -1;
+  Explained explained;
+};
+
+MostExplained mostExplained(const std::vector<Claim>& claims, const ClaimsPerPixel& table,
+                            float max_share, bool maps_name_objects) {
+  MostExplained worst;
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
     const Explained e = explainedShare(claims, i, table, maps_name_objects);
     if (e.share <= max_share) continue;
-    const bool tie = worst.first >= 0 && e.share == worst_share;
-    if (worst.first < 0 || e.share > worst_share ||
-        (tie && claims[i].confidence < claims[worst.first].confidence)) {
-      worst = {i, e.by};
-      worst_share = e.share;
+    const bool tie = worst.claim >= 0 && e.share == worst.explained.share;
+    if (worst.claim < 0 || e.share > worst.explained.share ||
+        (tie && claims[i].confidence < claims[worst.claim].confidence)) {
+      worst = {i, e};
     }
   }
   return worst;
@@ -202,6 +205,9 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
   params.validate();
   std::vector<ExplainedPose> explained;
   if (!params.enabled) return explained;
+  for (FramePose& p : poses) {
+    if (p.pose->accepted) p.pose->evidence.explained = 0;  // counted again below where it overlaps
+  }
   // Only poses whose confirmed pixels may overlap compete, in a table of the area they cover.
   std::vector<Splats> splats;
   for (const FramePose& p : poses) {
@@ -222,15 +228,23 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
   }
   const ClaimsPerPixel per_pixel = claimsPerPixel(claims, area.area());
   for (;;) {
-    const auto [worst, by] =
+    const MostExplained worst =
         mostExplained(claims, per_pixel, params.max_explained_share, maps_name_objects);
-    if (worst < 0) return explained;
-    claims[worst].alive = false;
-    explained.push_back({static_cast<size_t>(worst), static_cast<size_t>(by)});
-    InstancePose& rejected = *poses[worst].pose;
+    if (worst.claim < 0) break;
+    const int by = worst.explained.by;
+    claims[worst.claim].alive = false;
+    explained.push_back({static_cast<size_t>(worst.claim), static_cast<size_t>(by)});
+    InstancePose& rejected = *poses[worst.claim].pose;
     rejected.accepted = false;
+    rejected.evidence.explained = worst.explained.share;
     rejected.rejection = fmt::format("explained by {} {}", poses[by].object, poses[by].instance);
   }
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!claims[i].alive || !overlaps[i]) continue;
+    poses[i].pose->evidence.explained =
+        explainedShare(claims, static_cast<int>(i), per_pixel, maps_name_objects).share;
+  }
+  return explained;
 }
 
 cv::Mat confirmedArea(const std::vector<FramePose>& poses, const std::vector<bool>& counts,

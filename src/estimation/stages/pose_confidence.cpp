@@ -27,7 +27,8 @@ double logOdds(double share) {
 }
 
 /// Which features enter the model as log-odds (the shares measured against the data).
-constexpr std::array<bool, ConfidenceEvidence::kCount> kLogOdds = {true, true, true, true, false};
+constexpr std::array<bool, ConfidenceEvidence::kCount> kLogOdds = {true, true,  true,
+                                                                   true, false, true};
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> termsOf(
     const Eigen::Matrix<double, ConfidenceEvidence::kCount, 1>& f) {
@@ -39,20 +40,20 @@ Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> termsOf(
 }  // namespace
 
 const std::array<const char*, ConfidenceEvidence::kCount>& ConfidenceEvidence::names() {
-  static const std::array<const char*, kCount> names = {"surface_confirmed", "free_space",
-                                                        "map_support", "matched", "consensus"};
+  static const std::array<const char*, kCount> names = {
+      "surface_confirmed", "free_space", "map_support", "matched", "consensus", "explained"};
   return names;
 }
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::features() const {
   Eigen::Matrix<double, kCount, 1> f;
-  f << surface_confirmed, free_space, map_support, matched, consensus;
+  f << surface_confirmed, free_space, map_support, matched, consensus, explained;
   return f;
 }
 
 ConfidenceEvidence ConfidenceEvidence::fromFeatures(const Eigen::Matrix<double, kCount, 1>& f) {
   const Eigen::Matrix<float, kCount, 1> v = f.cast<float>();
-  return {v[0], v[1], v[2], v[3], v[4]};
+  return {v[0], v[1], v[2], v[3], v[4], v[5]};
 }
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::terms() const {
@@ -69,7 +70,7 @@ const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
       ParamSet<ConfidenceParams>()
           .add(&ConfidenceParams::intercept, "intercept", "", weight,
                "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . terms), "
-               "terms: log-odds of the four shares, consensus as it is")
+               "terms: log-odds of the shares, consensus as it is")
           .add(&ConfidenceParams::surface_confirmed, "surface_confirmed", "", weight,
                "weight: share of the visible model surface confirmed by measured depth")
           .add(&ConfidenceParams::free_space, "free_space", "", weight,
@@ -80,6 +81,8 @@ const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
                "weight: share of the camera-facing model points the segment matches (LCP)")
           .add(&ConfidenceParams::consensus, "consensus", "", weight,
                "weight: share of the 8 best bases that agree with the pose")
+          .add(&ConfidenceParams::explained, "explained", "", weight,
+               "weight: share of the confirmed surface other poses of the frame explain")
           .add(&ConfidenceParams::min_confidence, "min_confidence", "", ParamRange::closed(0, 1),
                "poses below this confidence are rejected (not published or written)")
           .flag("--min-confidence");
@@ -92,7 +95,7 @@ void ConfidenceParams::validate() const {
 
 Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceParams::weights() const {
   Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
-  w << surface_confirmed, free_space, map_support, matched, consensus;
+  w << surface_confirmed, free_space, map_support, matched, consensus, explained;
   return w;
 }
 

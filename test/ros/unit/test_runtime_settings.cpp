@@ -28,7 +28,7 @@ TEST(RuntimeSettings, DescriptionComesFromTheSchema) {
   EXPECT_EQ(min_confidence.type, "double");
   EXPECT_NE(min_confidence.description.find("estimation.confidence.min_confidence"),
             std::string::npos);
-  // Ranges and defaults: min_confidence in [0, 1], default 0.4; max_gap in (0, 3600].
+  // Ranges and defaults: min_confidence in [0, 1], default 0.25; max_gap in (0, 3600].
   const auto value = [](const dynamic_reconfigure::Config& c, const std::string& name) {
     for (const auto& p : c.doubles) {
       if (p.name == name) return p.value;
@@ -37,7 +37,7 @@ TEST(RuntimeSettings, DescriptionComesFromTheSchema) {
   };
   EXPECT_EQ(value(d.min, "min_confidence"), 0);
   EXPECT_EQ(value(d.max, "min_confidence"), 1);
-  EXPECT_FLOAT_EQ(value(d.dflt, "min_confidence"), 0.4f);
+  EXPECT_FLOAT_EQ(value(d.dflt, "min_confidence"), 0.25f);
   EXPECT_EQ(value(d.max, "max_gap"), 3600);
 }
 

@@ -66,8 +66,9 @@ struct ExplainedPose {
 /// size), by map x confidence: the pose that fits better holds it. While some accepted pose has
 /// more than max_explained_share of its pixels explained by others, the one with the largest such
 /// share (the lower confidence on a tie) is rejected, named after the pose explaining most of its
-/// pixels, and the shares are counted again. Does nothing when disabled. Returns the poses it
-/// rejected, in that order.
+/// pixels, and the shares are counted again. Each pose's `evidence.explained` is then its share
+/// (against the poses left; for a rejected one, at its rejection). Does nothing when disabled.
+/// Returns the poses it rejected, in that order.
 std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
                                         const FreeSpaceCheck& visibility,
                                         const FrameExplanationParams& params,

@@ -31,16 +31,19 @@ struct ConfidenceEvidence {
   float matched = 0;
   /// Of the best bases (up to kConsensusBases), the share that put the object in the same place.
   float consensus = 0;
+  /// Of the measured pixels the pose confirms, the share another accepted pose of the frame
+  /// confirms and holds at least as strongly (explainPoses); 0 for a pose judged alone.
+  float explained = 0;
 
   static constexpr int kConsensusBases = 8;
-  static constexpr int kCount = 5;
+  static constexpr int kCount = 6;
   /// Feature names, in the order of features() (CSV columns, calibration output).
   static const std::array<const char*, kCount>& names();
   Eigen::Matrix<double, kCount, 1> features() const;
   static ConfidenceEvidence fromFeatures(const Eigen::Matrix<double, kCount, 1>& f);
-  /// The logistic model's inputs, in the same order: the log-odds of the four shares that
-  /// measure the pose against the data (0.98 of the surface confirmed says much more than 0.90,
-  /// which a linear term cannot express), and consensus as it is.
+  /// The logistic model's inputs, in the same order: the log-odds of the shares that measure the
+  /// pose against the data (0.98 of the surface confirmed says much more than 0.90, which a
+  /// linear term cannot express), consensus as it is.
   Eigen::Matrix<double, kCount, 1> terms() const;
   /// terms() of the features' best values (weight > 0: 1) or worst (weight <= 0: 0).
   static Eigen::Matrix<double, kCount, 1> limitTerms(bool best);
@@ -50,14 +53,15 @@ struct ConfidenceEvidence {
 /// ConfidenceEvidence::terms().
 struct ConfidenceParams {
   // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
-  float intercept = -6.4184f;
-  float surface_confirmed = 0.2134f;
-  float free_space = -2.3388f;
-  float map_support = 1.6756f;
-  float matched = 0.7103f;
-  float consensus = 1.1847f;
+  float intercept = -9.4409f;
+  float surface_confirmed = -0.0356f;
+  float free_space = -2.1235f;
+  float map_support = 1.3279f;
+  float matched = 1.0130f;
+  float consensus = 1.4922f;
+  float explained = -1.4698f;
   /// Poses below this confidence are rejected: not published, not written to results.
-  float min_confidence = 0.4f;
+  float min_confidence = 0.25f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ConfidenceParams>& schema();
