@@ -160,12 +160,14 @@ struct MostExplained {
   Explained explained;
 };
 
+/// Also writes each living claim's share to `shares` (indexed as `claims`).
 MostExplained mostExplained(const std::vector<Claim>& claims, const ClaimsPerPixel& table,
-                            float max_share, bool maps_name_objects) {
+                            float max_share, bool maps_name_objects, std::vector<float>& shares) {
   MostExplained worst;
   for (int i = 0; i < static_cast<int>(claims.size()); ++i) {
     if (!claims[i].alive) continue;
     const Explained e = explainedShare(claims, i, table, maps_name_objects);
+    shares[i] = e.share;
     if (e.share <= max_share) continue;
     const bool tie = worst.claim >= 0 && e.share == worst.explained.share;
     if (worst.claim < 0 || e.share > worst.explained.share ||
@@ -227,9 +229,10 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
     claims.back().alive = poses[i].pose->accepted;
   }
   const ClaimsPerPixel per_pixel = claimsPerPixel(claims, area.area());
+  std::vector<float> shares(claims.size(), 0.0f);
   for (;;) {
     const MostExplained worst =
-        mostExplained(claims, per_pixel, params.max_explained_share, maps_name_objects);
+        mostExplained(claims, per_pixel, params.max_explained_share, maps_name_objects, shares);
     if (worst.claim < 0) break;
     const int by = worst.explained.by;
     claims[worst.claim].alive = false;
@@ -239,10 +242,9 @@ std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
     rejected.evidence.explained = worst.explained.share;
     rejected.rejection = fmt::format("explained by {} {}", poses[by].object, poses[by].instance);
   }
+  // The last count's shares: those of the poses left.
   for (size_t i = 0; i < poses.size(); ++i) {
-    if (!claims[i].alive || !overlaps[i]) continue;
-    poses[i].pose->evidence.explained =
-        explainedShare(claims, static_cast<int>(i), per_pixel, maps_name_objects).share;
+    if (claims[i].alive) poses[i].pose->evidence.explained = shares[i];
   }
   return explained;
 }
