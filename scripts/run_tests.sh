@@ -51,6 +51,10 @@ stage_done "catkin_lint and the markdown links"
 "$REPO/scripts/build.sh" -DSTOCS_CORE_TESTS=OFF tests
 stage_done "the catkin build (package and ROS tests)"
 rm -rf "$WS/build/test_results"
+# Tests run $JOBS at a time, each with OpenMP threads: threads that spin between parallel regions
+# (libgomp's default) take the cores the other tests need, and the programs would re-execute
+# themselves to wait passively (stocs/util/openmp_wait.h). The OpenMP wait test unsets it.
+export OMP_WAIT_POLICY=passive
 # run_tests exits 0 even when tests fail; catkin_test_results gives the verdict.
 catkin_make -C "$WS" -j"$JOBS" run_tests > "$WS/run_tests.log" 2>&1 || true
 if ! catkin_test_results --verbose "$WS/build/test_results"; then
