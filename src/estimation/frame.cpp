@@ -102,6 +102,13 @@ ObjectInput objectInput(const Frame& frame, const CameraIntrinsics& camera,
   return input;
 }
 
+PipelineParams paramsForMaps(const Frame& frame, const PipelineParams& params) {
+  if (frame.maps_name_objects) return params;
+  PipelineParams p = params;
+  p.confidence = params.confidence.forDepthAloneMaps();
+  return p;
+}
+
 void forObject(const std::string& name, const std::function<void()>& step) {
   try {
     step();
@@ -117,8 +124,9 @@ std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<Fr
 }
 
 std::vector<ObjectResult> estimateFrame(const Frame& frame, const std::vector<FrameObject>& objects,
-                                        const PipelineParams& params,
+                                        const PipelineParams& requested,
                                         const ObjectEstimator& estimate) {
+  const PipelineParams params = paramsForMaps(frame, requested);
   const CameraIntrinsics camera = frameCamera(frame);
   std::vector<ObjectResult> results;
   for (const FrameObject& object : objects) {
@@ -143,7 +151,7 @@ void explainFrame(const Frame& frame, const CameraIntrinsics& camera,
                   const std::vector<FrameObject>& objects,
                   const std::vector<PoseEstimate*>& estimates, const PipelineParams& params) {
   if (!params.explanation.enabled) return;
-  FrameExplainer(frame, camera, objects, params).explain(estimates);
+  FrameExplainer(frame, camera, objects, paramsForMaps(frame, params)).explain(estimates);
 }
 
 }  // namespace stocs

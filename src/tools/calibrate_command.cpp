@@ -3,10 +3,13 @@
 // (`stocs eval --targets-csv`, adds_success). Prints the coefficients for the configuration and
 // the code, the in-sample fit, and what each min_confidence would reject.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "commands.h"
 #include "report/object_runs.h"
@@ -22,6 +25,7 @@ struct CalibrateOptions {
   std::vector<std::string> targets;  // targets CSVs, one per objects CSV
   double l2 = 1e-3;
   double min_confidence = ConfidenceParams{}.min_confidence;
+  bool depth_alone = false;  // the runs' maps came from depth alone: the depth_alone coefficients
 };
 
 /// Of a `stocs eval --targets-csv` file, whether each target's pose was right (adds_success).
@@ -82,15 +86,23 @@ Samples joinRuns(const CalibrateOptions& o) {
   return s;
 }
 
-std::string coefficientsText(const LogisticModel& m) {
+/// The coefficients as configuration and code: ConfidenceParams' own, or its depth_alone model's.
+std::string coefficientsText(const LogisticModel& m, bool depth_alone) {
   const auto& names = ConfidenceEvidence::names();
-  std::string yaml =
-      fmt::format("estimation:\n  confidence:\n    intercept: {:.4f}\n", m.intercept);
+  const std::string indent = depth_alone ? "      " : "    ";
+  std::string yaml = "estimation:\n  confidence:\n";
+  if (depth_alone) yaml += "    depth_alone:\n";
+  yaml += fmt::format("{}intercept: {:.4f}\n", indent, m.intercept);
   std::string cpp = fmt::format("  float intercept = {:.4f}f;\n", m.intercept);
+  std::vector<std::string> values = {fmt::format("{:.4f}f", m.intercept)};
   for (size_t k = 0; k < names.size(); ++k) {
-    yaml += fmt::format("    {}: {:.4f}\n", names[k], m.weights[static_cast<Eigen::Index>(k)]);
-    cpp +=
-        fmt::format("  float {} = {:.4f}f;\n", names[k], m.weights[static_cast<Eigen::Index>(k)]);
+    const double w = m.weights[static_cast<Eigen::Index>(k)];
+    yaml += fmt::format("{}{}: {:.4f}\n", indent, names[k], w);
+    cpp += fmt::format("  float {} = {:.4f}f;\n", names[k], w);
+    values.push_back(fmt::format("{:.4f}f", w));
+  }
+  if (depth_alone) {
+    cpp = fmt::format("  ConfidenceModel depth_alone = {{{}}};\n", fmt::join(values, ", "));
   }
   return "YAML (config):\n" + yaml + "\nC++ (ConfidenceParams):\n" + cpp;
 }
@@ -138,7 +150,7 @@ int runCalibrate(const CalibrateOptions& o) {
   std::vector<double> p;
   for (Eigen::Index i = 0; i < x.rows(); ++i) p.push_back(model.probability(x.row(i).transpose()));
   fmt::print("{} poses, {} right, {} wrong\n\n{}\n", s.correct.size(), right,
-             s.correct.size() - right, coefficientsText(model));
+             s.correct.size() - right, coefficientsText(model, o.depth_alone));
   fmt::print("In-sample fit: {}\n\n{}", fitLine(probabilityFit(p, s.correct)), kRejectionHeader);
   for (int percent = 5; percent <= 95; percent += 5) {
     fmt::print("{}", rejectionRow(p, s.correct, percent / 100.0));
@@ -168,6 +180,9 @@ Command registerCalibrate(CLI::App& app) {
   cmd->add_option("--min-confidence", o->min_confidence,
                   "Threshold whose rejections of the runs' written confidence are reported")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--depth-alone", o->depth_alone,
+                "The runs had maps from depth alone (`--prob geometric`): print the coefficients "
+                "as estimation.confidence.depth_alone");
   return {cmd, [o] { return runCalibrate(*o); }};
 }
 

@@ -95,8 +95,9 @@ FrameTracker::Inputs FrameTracker::inputs(const Frame& frame, const CameraIntrin
 }
 
 FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObject>& objects,
-                                  const PipelineParams& params, double stamp,
+                                  const PipelineParams& requested, double stamp,
                                   std::optional<double> previous_input) {
+  const PipelineParams params = paramsForMaps(frame, requested);
   FrameTracking out;
   const double dt = begin(out, stamp, previous_input);
   const CameraIntrinsics camera = frameCamera(frame);
@@ -122,9 +123,10 @@ FrameTracking FrameTracker::track(const Frame& frame, const std::vector<FrameObj
 }
 
 FrameTracking FrameTracker::follow(const Frame& frame, const std::vector<FrameObject>& objects,
-                                   const PipelineParams& params, double stamp,
+                                   const PipelineParams& requested, double stamp,
                                    std::optional<double> previous_input,
                                    const FrameDetection* detection) {
+  const PipelineParams params = paramsForMaps(frame, requested);
   FrameTracking out;
   const double dt = begin(out, stamp, previous_input);
   std::map<std::string, std::vector<int>> merged;  // tracks that took a detected pose, by object

@@ -3,6 +3,7 @@
 // request.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/core.hpp>
 
 #include "stocs/eval/pose_metrics.h"
@@ -224,6 +225,32 @@ TEST_F(EstimatorTest, APoseWhoseSurfaceAnotherPartlyExplainsIsJudgedAgainWithTha
   EXPECT_LT(block.confidence, alone);
   // The twin holds the pixels both confirm; only its splats' fringe off both maps ties.
   EXPECT_LT(results[1].estimate.best().evidence.explained, block.evidence.explained);
+}
+
+// Maps from depth alone mark every region of an object's size alike: the frame loop and the
+// tracker judge their poses by the depth_alone coefficients, other maps' by the inherited ones.
+TEST_F(EstimatorTest, MapsFromDepthAloneAreJudgedByTheirOwnCoefficients) {
+  PipelineParams pipeline;
+  pipeline.confidence.depth_alone.intercept += 1;  // the defaults are the maps' coefficients
+  Estimator estimator(pipeline, ModelCache(test::scratchDir("estimator_cache")));
+  estimator.addObject("block", model_file_);
+  const std::vector<FrameObject> objects = {{"block", estimator.model("block").get()}};
+  const ConfidenceParams& params = pipeline.confidence;
+  const ConfidenceModel& named = params;
+  for (const bool maps_name_objects : {true, false}) {
+    frame_.maps_name_objects = maps_name_objects;
+    const ConfidenceModel& used = maps_name_objects ? named : params.depth_alone;
+    const ConfidenceModel& other = maps_name_objects ? params.depth_alone : named;
+    const InstancePose detected = estimator.estimate(frame_, "block").best();
+    EXPECT_FLOAT_EQ(detected.confidence, used.confidence(detected.evidence)) << maps_name_objects;
+    EXPECT_GT(std::abs(detected.confidence - other.confidence(detected.evidence)), 1e-4)
+        << maps_name_objects;
+    FrameTracker tracker{TrackingParams{}};
+    const FrameTracking tracked = tracker.track(frame_, objects, pipeline, 0.0);
+    ASSERT_EQ(tracked.objects.size(), 1u);
+    const InstancePose& followed = tracked.objects[0].result.estimate.best();
+    EXPECT_FLOAT_EQ(followed.confidence, used.confidence(followed.evidence)) << maps_name_objects;
+  }
 }
 
 }  // namespace

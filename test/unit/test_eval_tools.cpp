@@ -285,6 +285,12 @@ TEST_F(EvalCliTest, CalibrateFitsLabelledRunsAndNamesBadInputs) {
   const size_t auc = out.find("ROC AUC ");
   ASSERT_NE(auc, std::string::npos) << out;
   EXPECT_NEAR(std::stod(out.substr(auc + 8)), 0.9, 0.05) << out;
+  // Runs on maps from depth alone: the same fit, as the depth_alone coefficients.
+  ASSERT_EQ(test::runCommand(kTool + " calibrate --depth-alone" + pair, out), 0) << out;
+  EXPECT_NE(out.find("estimation:\n  confidence:\n    depth_alone:\n      intercept: "),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("  ConfidenceModel depth_alone = {"), std::string::npos) << out;
 
   EXPECT_EQ(test::runCommand(
                 kTool + " calibrate" + pair + " --objects " + (root_ / "o.csv").string(), out),

@@ -101,6 +101,10 @@ GeometricSegmentation setGeometricProbabilities(Frame& frame,
 /// its first samples (an unbiased subsample).
 ObjectSize modelSize(const ObjectModel& model);
 
+/// `params` with the confidence model of the frame's maps: ConfidenceParams::depth_alone where they
+/// do not name objects (maps from depth alone). estimateFrame and the trackers judge with it.
+PipelineParams paramsForMaps(const Frame& frame, const PipelineParams& params);
+
 /// Runs `step`, the work of one object, prefixing an InputError it throws with the object's name
 /// ("object 'cat': ...").
 void forObject(const std::string& name, const std::function<void()>& step);

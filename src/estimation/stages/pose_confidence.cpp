@@ -64,25 +64,62 @@ Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceEvidence::limitTe
   return termsOf(Eigen::Matrix<double, kCount, 1>::Constant(best ? 1.0 : 0.0));
 }
 
+/// A coefficient of the logistic model: its field, key and meaning.
+struct Coefficient {
+  float ConfidenceModel::*field;
+  const char* key;
+  const char* meaning;
+};
+
+constexpr Coefficient kCoefficients[] = {
+    {&ConfidenceModel::intercept, "intercept",
+     "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . terms), terms: "
+     "log-odds of the shares, consensus as it is"},
+    {&ConfidenceModel::surface_confirmed, "surface_confirmed",
+     "weight: share of the visible model surface confirmed by measured depth"},
+    {&ConfidenceModel::free_space, "free_space",
+     "weight: share of the visible model surface in front of measured depth"},
+    {&ConfidenceModel::map_support, "map_support",
+     "weight: mean network probability at the confirmed surface"},
+    {&ConfidenceModel::matched, "matched",
+     "weight: share of the camera-facing model points the segment matches (LCP)"},
+    {&ConfidenceModel::consensus, "consensus",
+     "weight: share of the 8 best bases that agree with the pose"},
+    {&ConfidenceModel::explained, "explained",
+     "weight: share of the confirmed surface other poses of the frame explain"},
+};
+
+/// The coefficients' entries of a schema for S, a ConfidenceModel or a struct derived from it.
+template <class S>
+ParamSet<S> modelSchema() {
+  ParamSet<S> schema;
+  for (const Coefficient& c : kCoefficients) {
+    schema.add(static_cast<float S::*>(c.field), c.key, "", ParamRange::closed(-1000, 1000),
+               c.meaning);
+  }
+  return schema;
+}
+
+const ParamSet<ConfidenceModel>& ConfidenceModel::schema() {
+  static const ParamSet<ConfidenceModel> schema = modelSchema<ConfidenceModel>();
+  return schema;
+}
+
+Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceModel::weights() const {
+  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
+  w << surface_confirmed, free_space, map_support, matched, consensus, explained;
+  return w;
+}
+
+float ConfidenceModel::confidence(const ConfidenceEvidence& evidence) const {
+  const double z = intercept + weights().dot(evidence.terms());
+  return static_cast<float>(1.0 / (1.0 + std::exp(-z)));
+}
+
 const ParamSet<ConfidenceParams>& ConfidenceParams::schema() {
-  const ParamRange weight = ParamRange::closed(-1000, 1000);
   static const ParamSet<ConfidenceParams> schema =
-      ParamSet<ConfidenceParams>()
-          .add(&ConfidenceParams::intercept, "intercept", "", weight,
-               "logistic model (stocs calibrate): confidence = sigmoid(intercept + w . terms), "
-               "terms: log-odds of the shares, consensus as it is")
-          .add(&ConfidenceParams::surface_confirmed, "surface_confirmed", "", weight,
-               "weight: share of the visible model surface confirmed by measured depth")
-          .add(&ConfidenceParams::free_space, "free_space", "", weight,
-               "weight: share of the visible model surface in front of measured depth")
-          .add(&ConfidenceParams::map_support, "map_support", "", weight,
-               "weight: mean network probability at the confirmed surface")
-          .add(&ConfidenceParams::matched, "matched", "", weight,
-               "weight: share of the camera-facing model points the segment matches (LCP)")
-          .add(&ConfidenceParams::consensus, "consensus", "", weight,
-               "weight: share of the 8 best bases that agree with the pose")
-          .add(&ConfidenceParams::explained, "explained", "", weight,
-               "weight: share of the confirmed surface other poses of the frame explain")
+      modelSchema<ConfidenceParams>()
+          .nest(&ConfidenceParams::depth_alone, "depth_alone", ConfidenceModel::schema())
           .add(&ConfidenceParams::min_confidence, "min_confidence", "", ParamRange::closed(0, 1),
                "poses below this confidence are rejected (not published or written)")
           .flag("--min-confidence");
@@ -93,15 +130,10 @@ void ConfidenceParams::validate() const {
   schema().validate(*this);
 }
 
-Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> ConfidenceParams::weights() const {
-  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> w;
-  w << surface_confirmed, free_space, map_support, matched, consensus, explained;
-  return w;
-}
-
-float ConfidenceParams::confidence(const ConfidenceEvidence& evidence) const {
-  const double z = intercept + weights().dot(evidence.terms());
-  return static_cast<float>(1.0 / (1.0 + std::exp(-z)));
+ConfidenceParams ConfidenceParams::forDepthAloneMaps() const {
+  ConfidenceParams p = *this;
+  static_cast<ConfidenceModel&>(p) = depth_alone;
+  return p;
 }
 
 void judgePose(InstancePose& pose, const ConfidenceParams& params) {

@@ -50,9 +50,9 @@ struct ConfidenceEvidence {
 };
 
 /// The logistic model: confidence = sigmoid(intercept + sum of weight * term), terms from
-/// ConfidenceEvidence::terms().
-struct ConfidenceParams {
-  // Fitted by scripts/calibrate_confidence.sh (docs/confidence.md).
+/// ConfidenceEvidence::terms(). Fitted by scripts/calibrate_confidence.sh (docs/confidence.md); the
+/// defaults are the fit for maps that name objects (a network's, masks, labels).
+struct ConfidenceModel {
   float intercept = -9.4409f;
   float surface_confirmed = -0.0356f;
   float free_space = -2.1235f;
@@ -60,6 +60,20 @@ struct ConfidenceParams {
   float matched = 1.0130f;
   float consensus = 1.4922f;
   float explained = -1.4698f;
+
+  /// Key, range and meaning of every coefficient.
+  static const ParamSet<ConfidenceModel>& schema();
+  /// The weights in the order of ConfidenceEvidence::terms().
+  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> weights() const;
+  float confidence(const ConfidenceEvidence& evidence) const;
+};
+
+/// The confidence's models and threshold. The inherited coefficients are for maps that name
+/// objects; `depth_alone`'s for maps from depth alone (Frame::maps_name_objects false), which mark
+/// every region of an object's size alike. Its defaults are the maps' coefficients: a fit of their
+/// own served coloured or plain model files but not both (docs/confidence.md).
+struct ConfidenceParams : ConfidenceModel {
+  ConfidenceModel depth_alone;
   /// Poses below this confidence are rejected: not published, not written to results.
   float min_confidence = 0.25f;
 
@@ -67,10 +81,8 @@ struct ConfidenceParams {
   static const ParamSet<ConfidenceParams>& schema();
   /// Throws InputError naming the first value out of range.
   void validate() const;
-
-  /// The weights in the order of ConfidenceEvidence::terms().
-  Eigen::Matrix<double, ConfidenceEvidence::kCount, 1> weights() const;
-  float confidence(const ConfidenceEvidence& evidence) const;
+  /// These settings with `depth_alone`'s coefficients in place of the maps' ones.
+  ConfidenceParams forDepthAloneMaps() const;
 };
 
 /// Sets the pose's confidence from its evidence, accepts it when it reaches min_confidence, and
