@@ -9,6 +9,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.h"
@@ -88,21 +89,25 @@ Samples joinRuns(const CalibrateOptions& o) {
 
 /// The coefficients as configuration and code: ConfidenceParams' own, or its depth_alone model's.
 std::string coefficientsText(const LogisticModel& m, bool depth_alone) {
+  std::vector<std::pair<std::string, double>> coefficients = {{"intercept", m.intercept}};
   const auto& names = ConfidenceEvidence::names();
-  const std::string indent = depth_alone ? "      " : "    ";
+  for (size_t k = 0; k < names.size(); ++k) {
+    coefficients.emplace_back(names[k], m.weights[static_cast<Eigen::Index>(k)]);
+  }
   std::string yaml = "estimation:\n  confidence:\n";
   if (depth_alone) yaml += "    depth_alone:\n";
-  yaml += fmt::format("{}intercept: {:.4f}\n", indent, m.intercept);
-  std::string cpp = fmt::format("  float intercept = {:.4f}f;\n", m.intercept);
-  std::vector<std::string> values = {fmt::format("{:.4f}f", m.intercept)};
-  for (size_t k = 0; k < names.size(); ++k) {
-    const double w = m.weights[static_cast<Eigen::Index>(k)];
-    yaml += fmt::format("{}{}: {:.4f}\n", indent, names[k], w);
-    cpp += fmt::format("  float {} = {:.4f}f;\n", names[k], w);
-    values.push_back(fmt::format("{:.4f}f", w));
+  std::vector<std::string> literals;
+  for (const auto& [name, value] : coefficients) {
+    yaml += fmt::format("{}{}: {:.4f}\n", depth_alone ? "      " : "    ", name, value);
+    literals.push_back(fmt::format("{:.4f}f", value));
   }
+  std::string cpp;
   if (depth_alone) {
-    cpp = fmt::format("  ConfidenceModel depth_alone = {{{}}};\n", fmt::join(values, ", "));
+    cpp = fmt::format("  ConfidenceModel depth_alone = {{{}}};\n", fmt::join(literals, ", "));
+  } else {
+    for (size_t k = 0; k < coefficients.size(); ++k) {
+      cpp += fmt::format("  float {} = {};\n", coefficients[k].first, literals[k]);
+    }
   }
   return "YAML (config):\n" + yaml + "\nC++ (ConfidenceParams):\n" + cpp;
 }
