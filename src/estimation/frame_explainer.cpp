@@ -36,10 +36,12 @@ std::vector<ExplainedPose> FrameExplainer::explain(const std::vector<PoseEstimat
   collect(estimates);
   std::vector<float> before;
   for (const FramePose& p : poses_) before.push_back(p.pose->evidence.explained);
+  std::vector<ObjectMap> maps;
+  for (size_t i = 0; i < objects_.size(); ++i) maps.push_back({objects_[i].name, maps_[i]});
   std::vector<ExplainedPose> explained =
-      explainPoses(poses_, visibility_, params_.explanation, frame_.maps_name_objects);
+      explainPoses(poses_, visibility_, params_.explanation, frame_.maps_name_objects, maps);
   // The confidence reads the share others explain: poses whose share changed are judged again;
-  // the rejected ones keep their reason (`explained by`).
+  // the rejected ones keep their reason (`explained by`, `claimed by the map of`).
   for (size_t i = 0; i < poses_.size(); ++i) {
     InstancePose& pose = *poses_[i].pose;
     if (pose.evidence.explained == before[i]) continue;

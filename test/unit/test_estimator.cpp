@@ -189,14 +189,16 @@ TEST_F(EstimatorTest, AnObjectWhosePoseAnotherExplainsIsSearchedForAgainElsewher
 
 TEST_F(EstimatorTest, APoseWhoseSurfaceAnotherPartlyExplainsIsJudgedAgainWithThatShare) {
   // The block at truth_, and a twin posed on it slid by 6 cm along its length, whose map holds the
-  // block's pixels more strongly: the twin explains the part of the block's surface it covers.
+  // pixels they share more strongly: the twin explains the part of the block's surface it covers
+  // (a map of the twin over the whole block would claim the block's pose: test_frame_explanation).
   const CameraIntrinsics camera = test::testCamera();
-  cv::Mat labels;
-  test::renderDepth({{asymmetricMesh(), truth_}}, camera, &labels);
-  cv::Mat twin_map(labels.size(), CV_32FC1, cv::Scalar(0));
-  twin_map.setTo(0.95f, labels == 1);
-  frame_.probabilities["twin"] = twin_map;
   const Eigen::Isometry3f slid = truth_ * Eigen::Translation3f(0.06f, 0, 0);
+  cv::Mat labels, twin_labels;
+  test::renderDepth({{asymmetricMesh(), truth_}}, camera, &labels);
+  test::renderDepth({{asymmetricMesh(), slid}}, camera, &twin_labels);
+  cv::Mat twin_map(labels.size(), CV_32FC1, cv::Scalar(0));
+  twin_map.setTo(0.95f, (labels == 1) & (twin_labels == 1));
+  frame_.probabilities["twin"] = twin_map;
 
   Estimator estimator(PipelineParams{}, ModelCache(test::scratchDir("estimator_cache")));
   estimator.addObject("block", model_file_);

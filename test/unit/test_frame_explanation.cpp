@@ -1,8 +1,10 @@
 // The frame-level explanation on rendered boxes with hand-set poses, maps and confidences: an
 // absent look-alike fitted on the present box, a second pose of one box in a bin, a worse-fitting
-// object over a box where the maps mark both alike, and two separate objects (nothing lost).
+// object over a box where the maps mark both alike, two separate objects (nothing lost), and a
+// pose on surface another object's map holds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -46,11 +48,18 @@ class FrameExplanationTest : public ::testing::Test {
     m.setTo(level, labels_ == index + 1);
     return m;
   }
+  /// explainPoses with the maps of the poses' objects.
   std::vector<ExplainedPose> explain(std::vector<FramePose>& poses,
                                      const FrameExplanationParams& params = {},
                                      bool maps_name_objects = true) const {
+    std::vector<ObjectMap> maps;
+    for (const FramePose& p : poses) {
+      const bool listed = std::any_of(maps.begin(), maps.end(),
+                                      [&](const ObjectMap& m) { return m.object == p.object; });
+      if (!listed) maps.push_back({p.object, p.probability});
+    }
     return explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), params,
-                        maps_name_objects);
+                        maps_name_objects, maps);
   }
 
   const CameraIntrinsics camera_ = test::testCamera();
@@ -151,7 +160,8 @@ TEST_F(FrameExplanationTest, OnlyAcceptedPosesExplainAndDisabledChangesNothing) 
   box.rejection = "confidence";
   std::vector<FramePose> poses = {{"box", 0, &box_, &box_map, &box},
                                   {"small_box", 0, &small_box_, &small_map, &small}};
-  explain(poses);
+  // Without the objects' maps, which would give the box's surface to the box (below).
+  explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), {});
   EXPECT_TRUE(small.accepted);
   EXPECT_EQ(box.rejection, "confidence");
   box.accepted = true;
@@ -165,6 +175,53 @@ TEST(FrameExplanationParams, RejectsAShareOutsideZeroToOne) {
   FrameExplanationParams params;
   params.max_explained_share = 1.5f;
   test::expectInputError([&] { params.validate(); }, "max_explained_share");
+}
+
+// A bin asked for one box: the absent look-alike is posed on a box that has no pose, where the
+// box's map is higher than its own. The map gives that surface to the box; maps from depth alone,
+// which mark every region of its size alike, do not.
+TEST_F(FrameExplanationTest, APoseOnSurfaceAnotherObjectsMapHoldsIsClaimedByThatMap) {
+  const Eigen::Isometry3f a = at(-0.046f, 0), b = at(0.046f, 0);  // touching boxes
+  render({a, b});
+  const cv::Mat bin = map(0, 0.9f) + map(1, 0.9f), small_map = map(1, 0.7f);
+  for (const bool maps_name_objects : {true, false}) {
+    InstancePose box = instance(a, 0.9f), small = instance(b, 0.95f);
+    std::vector<FramePose> poses = {{"box", 0, &box_, &bin, &box},
+                                    {"small_box", 0, &small_box_, &small_map, &small}};
+    const std::vector<ObjectMap> maps = {{"box", &bin}, {"small_box", &small_map}};
+    const std::vector<ExplainedPose> explained = explainPoses(
+        poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), {}, maps_name_objects, maps);
+    EXPECT_TRUE(explained.empty()) << maps_name_objects;  // no pose explains it
+    EXPECT_TRUE(box.accepted) << maps_name_objects;
+    EXPECT_EQ(small.accepted, !maps_name_objects);
+    if (maps_name_objects) {
+      EXPECT_EQ(small.rejection, "claimed by the map of box");
+    }
+  }
+}
+
+// Another object's map claims a pose's surface when it is higher there on the whole (its mean over
+// the pose's pixels): a neighbour's map bleeding over a third of it, or a confusion weaker than the
+// object's own map, leaves the pose.
+TEST_F(FrameExplanationTest, AnotherMapClaimsThePoseOnlyWhereItIsHigherOnTheWhole) {
+  const Eigen::Isometry3f pose = test::viewingPose(0.6f);
+  render({pose});
+  const cv::Mat box_map = map(0, 0.8f);
+  const cv::Rect box = cv::boundingRect(labels_ == 1);
+  cv::Mat bleeding(labels_.size(), CV_32FC1, cv::Scalar(0));
+  bleeding(cv::Rect(box.x, box.y, box.width / 3, box.height)).setTo(0.9f);
+  struct Case {
+    cv::Mat other;
+    bool kept;
+  };
+  for (const Case& c :
+       {Case{bleeding, true}, Case{map(0, 0.7f), true}, Case{map(0, 0.9f), false}}) {
+    InstancePose right = instance(pose, 0.9f);
+    std::vector<FramePose> poses = {{"box", 0, &box_, &box_map, &right}};
+    explainPoses(poses, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), {}, true,
+                 {{"box", &box_map}, {"other", &c.other}});
+    EXPECT_EQ(right.accepted, c.kept) << cv::mean(c.other)[0];
+  }
 }
 
 }  // namespace

@@ -72,6 +72,70 @@ Claim claimOf(const FramePose& p, const Splats& splats, int id, PixelTable& tabl
   return c;
 }
 
+/// The pixels of a pose's splats within `roi` (CV_8UC1 of its size, 255).
+cv::Mat splatMask(const Splats& splats, const cv::Rect& roi) {
+  cv::Mat mask(roi.size(), CV_8UC1, cv::Scalar(0));
+  for (const cv::Vec3i& s : splats.squares) {
+    const int h = s[2];
+    const cv::Rect square = cv::Rect(s[0] - h, s[1] - h, 2 * h + 1, 2 * h + 1) & roi;
+    if (!square.empty()) mask(square - roi.tl()).setTo(255);
+  }
+  return mask;
+}
+
+/// Whether an accepted pose of `object` other than pose i covers more than `share` of `mask`,
+/// pose i's pixels (within its splats' box).
+bool posedThere(const std::vector<FramePose>& poses, const std::vector<Splats>& splats, size_t i,
+                const cv::Mat& mask, const std::string& object, float share) {
+  const int pixels = cv::countNonZero(mask);
+  for (size_t j = 0; j < poses.size(); ++j) {
+    if (j == i || poses[j].object != object || !poses[j].pose->accepted) continue;
+    if ((splats[i].box & splats[j].box).empty()) continue;
+    const cv::Mat both = mask & splatMask(splats[j], splats[i].box);
+    if (cv::countNonZero(both) > share * pixels) return true;
+  }
+  return false;
+}
+
+/// The object whose map holds pose i's splatted pixels more strongly than the pose's own object's
+/// map, on the mean over those pixels (a map's noise averages out), and has no pose over more than
+/// `share` of them (where it has, the poses compete instead: explainedShare); or null.
+const std::string* claimedByMaps(const std::vector<FramePose>& poses,
+                                 const std::vector<Splats>& splats, size_t i,
+                                 const std::vector<ObjectMap>& maps, float share) {
+  const FramePose& p = poses[i];
+  const cv::Rect& box = splats[i].box;
+  if (box.empty()) return nullptr;
+  const cv::Mat mask = splatMask(splats[i], box);
+  const double mine = cv::mean((*p.probability)(box), mask)[0];
+  const std::string* by = nullptr;
+  double strongest = mine;
+  for (const ObjectMap& m : maps) {
+    if (m.object == p.object) continue;
+    const double theirs = cv::mean((*m.probability)(box), mask)[0];
+    if (theirs > strongest && !posedThere(poses, splats, i, mask, m.object, share)) {
+      by = &m.object;
+      strongest = theirs;
+    }
+  }
+  return by;
+}
+
+/// Rejects the accepted poses whose surface the map of an object without a pose there holds more
+/// strongly (claimedByMaps).
+void rejectClaimedByMaps(std::vector<FramePose>& poses, const std::vector<Splats>& splats,
+                         const std::vector<ObjectMap>& maps, float share) {
+  std::vector<const std::string*> claimed(poses.size(), nullptr);
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (poses[i].pose->accepted) claimed[i] = claimedByMaps(poses, splats, i, maps, share);
+  }
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!claimed[i]) continue;
+    poses[i].pose->accepted = false;
+    poses[i].pose->rejection = fmt::format("claimed by the map of {}", *claimed[i]);
+  }
+}
+
 /// Which poses' splats overlap another's (by their boxes): only those can explain or be explained.
 std::vector<char> overlapping(const std::vector<Splats>& splats) {
   std::vector<char> out(splats.size(), 0);
@@ -203,17 +267,22 @@ void FrameExplanationParams::validate() const {
 std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
                                         const FreeSpaceCheck& visibility,
                                         const FrameExplanationParams& params,
-                                        bool maps_name_objects) {
+                                        bool maps_name_objects,
+                                        const std::vector<ObjectMap>& maps) {
   params.validate();
   std::vector<ExplainedPose> explained;
   if (!params.enabled) return explained;
   for (FramePose& p : poses) {
     if (p.pose->accepted) p.pose->evidence.explained = 0;  // counted again below where it overlaps
   }
-  // Only poses whose confirmed pixels may overlap compete, in a table of the area they cover.
   std::vector<Splats> splats;
   for (const FramePose& p : poses) {
     splats.push_back(p.pose->accepted ? splatsOf(p, visibility) : Splats{});
+  }
+  if (maps_name_objects) rejectClaimedByMaps(poses, splats, maps, params.max_explained_share);
+  // Only poses whose confirmed pixels may overlap compete, in a table of the area they cover.
+  for (size_t i = 0; i < poses.size(); ++i) {
+    if (!poses[i].pose->accepted) splats[i] = Splats{};
   }
   const std::vector<char> overlaps = overlapping(splats);
   cv::Rect area;

@@ -4,7 +4,9 @@
 // so an absent look-alike fitted on a present object, or a second pose of one box in a bin, is as
 // consistent with the depth and its own map as a right pose; here poses that claim the same
 // measured surface compete for it, and a pose most of whose confirmed surface another pose
-// explains better is rejected ("explained by <object> <k>").
+// explains better is rejected ("explained by <object> <k>"); so is a pose on surface that another
+// object's map holds more strongly where that object has no pose ("claimed by the map of
+// <object>").
 
 #include <string>
 #include <vector>
@@ -51,6 +53,12 @@ struct FramePose {
   InstancePose* pose = nullptr;          ///< judged in place
 };
 
+/// An object's map over the frame, as the other objects' poses are read against it.
+struct ObjectMap {
+  std::string object;
+  const cv::Mat* probability = nullptr;  ///< CV_32FC1, the cloud's size
+};
+
 /// A pose explainPoses rejected and the pose explaining most of its surface (indices into its
 /// `poses`).
 struct ExplainedPose {
@@ -58,21 +66,27 @@ struct ExplainedPose {
   size_t by = 0;
 };
 
-/// Among the accepted poses of `poses`: each measured pixel a pose confirms (a camera-facing model
-/// sample within the free-space margin of the measured depth, splatted over the sample spacing)
-/// is explained by another pose when that pose confirms it too and holds it at least as strongly:
-/// by its object's map there, or, against another object's pose when the maps do not name objects
-/// (`maps_name_objects` false: maps from depth alone mark a region alike for every object of its
-/// size), by map x confidence: the pose that fits better holds it. While some accepted pose has
-/// more than max_explained_share of its pixels explained by others, the one with the largest such
-/// share (the lower confidence on a tie) is rejected, named after the pose explaining most of its
-/// pixels, and the shares are counted again. Each pose's `evidence.explained` is then its share
-/// (against the poses left; for a rejected one, at its rejection). Does nothing when disabled.
-/// Returns the poses it rejected, in that order.
+/// Among the accepted poses of `poses`: first, where the maps name objects, a pose more than
+/// max_explained_share of whose confirmed pixels (as below) another object's map of `maps` (every
+/// object of the frame, posed or not) holds more strongly than its own object's map is rejected,
+/// "claimed by the map of <object>": the network gives that surface to another object, which may
+/// have no pose there (a box of a bin asked for once). Then each measured pixel a pose confirms (a
+/// camera-facing model sample within the free-space margin of the measured depth, splatted over the
+/// sample spacing) is explained by another pose when that pose confirms it too and holds it at
+/// least as strongly: by its object's map there, or, against another object's pose when the maps do
+/// not name objects (`maps_name_objects` false: maps from depth alone mark a region alike for every
+/// object of its size), by map x confidence: the pose that fits better holds it. While some
+/// accepted pose has more than max_explained_share of its pixels explained by others, the one with
+/// the largest such share (the lower confidence on a tie) is rejected, named after the pose
+/// explaining most of its pixels, and the shares are counted again. Each pose's
+/// `evidence.explained` is then its share (against the poses left; for a rejected one, at its
+/// rejection). Does nothing when disabled. Returns the poses rejected for another pose, in that
+/// order.
 std::vector<ExplainedPose> explainPoses(std::vector<FramePose>& poses,
                                         const FreeSpaceCheck& visibility,
                                         const FrameExplanationParams& params,
-                                        bool maps_name_objects = true);
+                                        bool maps_name_objects = true,
+                                        const std::vector<ObjectMap>& maps = {});
 
 /// The pixels (CV_8UC1, 255) that the accepted poses of `poses` for which `counts` is true confirm,
 /// splatted as explainPoses claims them: the surface those poses explain.
