@@ -324,10 +324,8 @@ cv::Mat confirmedArea(const std::vector<FramePose>& poses, const std::vector<boo
   cv::Mat area(camera.height, camera.width, CV_8UC1, cv::Scalar(0));
   const cv::Rect image(0, 0, camera.width, camera.height);
   for (size_t i = 0; i < poses.size(); ++i) {
-    if (!counts[i] || !poses[i].pose->accepted) continue;
-    for (const cv::Vec3i& s : splatsOf(poses[i], visibility).squares) {
-      const int h = s[2];
-      area(cv::Rect(s[0] - h, s[1] - h, 2 * h + 1, 2 * h + 1) & image).setTo(255);
+    if (counts[i] && poses[i].pose->accepted) {
+      area |= splatMask(splatsOf(poses[i], visibility), image);
     }
   }
   return area;
