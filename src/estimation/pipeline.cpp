@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "stocs/estimation/stages/free_space_check.h"
+#include "stocs/segmentation/colour_boundaries.h"
 #include "stocs/util/error.h"
 
 namespace stocs {
@@ -22,7 +23,10 @@ const ParamSet<PipelineParams>& PipelineParams::schema() {
           .nest(&PipelineParams::confidence, "confidence", ConfidenceParams::schema(),
                 "Confidence and rejection (docs/confidence.md)")
           .nest(&PipelineParams::explanation, "explanation", FrameExplanationParams::schema(),
-                "Frame-level explanation (docs/confidence.md)");
+                "Frame-level explanation (docs/confidence.md)")
+          .nest(&PipelineParams::colour_boundaries, "colour_boundaries",
+                ColourBoundaryParams::schema(),
+                "Instance boundaries from the colour image (docs/algorithm.md)");
   return schema;
 }
 
@@ -83,7 +87,14 @@ PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv:
   const auto start = std::chrono::steady_clock::now();
   const int threads = params.stocs.threads > 0 ? params.stocs.threads : omp_get_max_threads();
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
-  if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
+  cv::Mat from_colour;
+  if (!boundary_map && colour && params.colour_boundaries.appliesTo(params.stocs.instances)) {
+    from_colour = colourBoundaryMap(*colour, params.colour_boundaries);
+    boundary_map = &from_colour;
+  }
+  if (boundary_map) {
+    labelRegions(segment, *boundary_map, probability, params.segment.region_min_probability);
+  }
   const double segment_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PoseEstimate result = detectOnSegment(segment, cloud, probability, model, params, camera, colour);

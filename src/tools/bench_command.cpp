@@ -304,7 +304,9 @@ Command registerBench(CLI::App& app) {
                   "Methods run again in the sweeps, comma-separated (default: every method run)")
       ->delimiter(',');
   addSelectionOptions(*cmd, o->split, o->scenes, o->objects);
-  cmd->add_option("--boundaries", o->boundaries, "Instance boundary maps: 'auto' or 'off'")
+  cmd->add_option("--boundaries", o->boundaries,
+                  "Instance boundaries: 'auto' (edge/ maps, else from rgb/ when searching several "
+                  "instances) or 'off'")
       ->check(CLI::IsMember({"auto", "off"}));
   cmd->add_option("--hard-threshold", o->method_options.hard_threshold,
                   "Hard-segment threshold of the main runs");

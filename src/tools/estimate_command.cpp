@@ -380,9 +380,11 @@ void checkTrackingOptions(const EstimateOptions& o) {
   }
 }
 
-int runEstimate(const EstimateOptions& o) {
+int runEstimate(EstimateOptions o) {
   validatePipelineOptions(o.params);
   checkTrackingOptions(o);
+  // 'off': neither the dataset's boundary maps nor those of the colour image.
+  if (o.boundaries == "off") o.params.colour_boundaries.enabled = false;
   return EstimateRun(o).run();
 }
 
@@ -400,8 +402,9 @@ Command registerEstimate(CLI::App& app) {
                   "confidence");
   addSelectionOptions(*cmd, o->split, o->scenes, o->objects);
   cmd->add_option("--boundaries", o->boundaries,
-                  "Instance boundary maps edge/IMAGE.png: 'auto' uses them where present, 'off' "
-                  "ignores them")
+                  "Instance boundary maps edge/IMAGE.png: 'auto' uses them where present, else "
+                  "boundaries from rgb/ when searching several instances (--colour-boundaries); "
+                  "'off' neither")
       ->check(CLI::IsMember({"auto", "off"}));
   cmd->add_option("--method", o->method,
                   "Pose estimation method: " + fmt::format("{}", fmt::join(methodNames(), ", ")));

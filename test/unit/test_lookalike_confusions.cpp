@@ -7,6 +7,8 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "stocs/estimation/pipeline.h"
+#include "stocs/eval/pose_metrics.h"
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_targets.h"
 #include "stocs/sim/bop_writer.h"
@@ -179,6 +181,54 @@ TEST(PackedBin, GroundTruthHoldsEveryBoxAndNoTwoOverlap) {
     EXPECT_EQ(placed[i].obj_id, 1);
     EXPECT_TRUE(footprintClear(placed, i, placed[i].pose, 0)) << "box " << i;
   }
+}
+
+/// The boxes of image 0 of a packed bin's `scene` (object 1) that `estimate`'s poses find: each
+/// ground-truth box taken by at most one pose within ADD-S of 10% of the diameter.
+int distinctRightBoxes(const BopDataset& ds, int scene, const PoseEstimate& estimate,
+                       const ObjectModel& model) {
+  std::vector<BopGtInstance> boxes = ds.sceneGroundTruth(scene).at(0);
+  int right = 0;
+  for (const InstancePose& pose : estimate.instances) {
+    const RigidPose e{pose.pose.linear().cast<double>(), pose.pose.translation().cast<double>()};
+    for (auto box = boxes.begin(); box != boxes.end(); ++box) {
+      if (addsError(model.points, e, {box->R, box->t_mm / 1000.0}) < 0.1 * model.diameter) {
+        boxes.erase(box);
+        ++right;
+        break;
+      }
+    }
+  }
+  return right;
+}
+
+TEST(PackedBin, BoundariesFromTheColourKeepBasesWithinOneBox) {
+  // The boxes' level tops give the depth no step between them; the colour image shows the gaps.
+  const fs::path root = lookalikeDataset("packed_bin_colour", 5, 1);
+  const BopDataset ds(root);
+  PipelineParams params;
+  params.stocs.instances = 8;
+  const PreparedModel model = prepareModelFile(ds.modelPath(1).string(), 0.001f, params.model);
+  int with = 0, without = 0;
+  for (int scene = 0; scene < 2; ++scene) {
+    const cv::Mat depth = ds.loadDepth(scene, 0);
+    const BopFrameCamera cam = ds.sceneCameras(scene).at(0);
+    const CameraIntrinsics k = cam.intrinsics(depth.cols, depth.rows);
+    const OrganizedCloud cloud = cloudFromDepth(depth, k, cam.depth_scale / 1000);
+    const cv::Mat probability = ds.loadProbability(scene, 0, 1);
+    const cv::Mat colour = ds.loadColour(scene, 0, depth.size());
+    const auto found = [&](bool from_colour) {
+      PipelineParams p = params;
+      p.colour_boundaries.enabled = from_colour;
+      const PoseEstimate e = detectObject(cloud, static_cast<float>(k.fx), probability, model, p,
+                                          nullptr, &k, &colour);
+      return distinctRightBoxes(ds, scene, e, model.model);
+    };
+    with += found(true);
+    without += found(false);
+  }
+  EXPECT_GE(with, 12) << "of 16 boxes";
+  EXPECT_GT(with, without);
 }
 
 TEST(PackedBin, UnknownObjectAndSequencesAreRefused) {

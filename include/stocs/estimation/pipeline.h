@@ -10,6 +10,7 @@
 #include "stocs/geometry/camera.h"
 #include "stocs/geometry/organized_cloud.h"
 #include "stocs/model/model_cache.h"
+#include "stocs/segmentation/colour_boundaries.h"
 #include "stocs/util/param_set.h"
 
 namespace cv {
@@ -24,7 +25,8 @@ struct PipelineParams {
   ModelPreparationParams model;
   StocsParams stocs;
   ConfidenceParams confidence;
-  FrameExplanationParams explanation;  ///< after every object of a frame (estimateFrame)
+  FrameExplanationParams explanation;      ///< after every object of a frame (estimateFrame)
+  ColourBoundaryParams colour_boundaries;  ///< instance boundaries where a frame has no map of them
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<PipelineParams>& schema();
@@ -33,7 +35,8 @@ struct PipelineParams {
 };
 
 /// Segments the cloud with `probability` (CV_32FC1, see toProbabilityImage), splits it into
-/// instance regions when a boundary map is given (see labelRegions), and runs StoCS. `camera`, the
+/// instance regions (see labelRegions) with `boundary_map`, or without one with a map from `colour`
+/// when the search is for several instances (ColourBoundaryParams), and runs StoCS. `camera`, the
 /// cloud's intrinsics for the free-space check, is recovered from the cloud when null (a caller
 /// estimating several objects of a frame passes it once known). The estimate's seconds and stages
 /// include the soft segment. Every instance gets its confidence evidence, confidence and verdict
