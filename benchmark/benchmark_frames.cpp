@@ -30,9 +30,7 @@ const Frame& frame(const std::filesystem::path& dataset, int scene, int image, i
   f.model_file = ds.modelPath(object).string();
   f.model = prepareModelFile(f.model_file, 0.001f, p.model);
   f.segment = buildSoftSegment(f.cloud, f.probability, f.focal, p.segment);
-  if (!f.boundary.empty()) {
-    labelRegions(f.segment, f.boundary, f.probability, p.segment.region_min_probability);
-  }
+  if (!f.boundary.empty()) labelRegions(f.segment, f.boundary, depth.cols, depth.rows);
   return frames.emplace(dataset, std::move(f)).first->second;
 }
 

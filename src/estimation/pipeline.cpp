@@ -89,12 +89,10 @@ PoseEstimate detectObject(const OrganizedCloud& cloud, float focal_px, const cv:
   SoftSegment segment = buildSoftSegment(cloud, probability, focal_px, params.segment, threads);
   cv::Mat from_colour;
   if (!boundary_map && colour && params.colour_boundaries.appliesTo(params.stocs.instances)) {
-    from_colour = colourBoundaryMap(*colour, params.colour_boundaries);
+    from_colour = colourBoundaryMap(*colour, probability, params.colour_boundaries);
     boundary_map = &from_colour;
   }
-  if (boundary_map) {
-    labelRegions(segment, *boundary_map, probability, params.segment.region_min_probability);
-  }
+  if (boundary_map) labelRegions(segment, *boundary_map, cloud.width, cloud.height);
   const double segment_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   PoseEstimate result = detectOnSegment(segment, cloud, probability, model, params, camera, colour);

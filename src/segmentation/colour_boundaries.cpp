@@ -22,7 +22,9 @@ const ParamSet<ColourBoundaryParams>& ColourBoundaryParams::schema() {
           .add(&P::line_contrast, "line_contrast", "", ParamRange::closed(1, 255),
                "grey levels a line is darker than its surroundings")
           .add(&P::edge_threshold, "edge_threshold", "", ParamRange::closed(1, 1000),
-               "Canny's lower threshold on the colour gradient (the upper is twice it)");
+               "Canny's lower threshold on the colour gradient (the upper is twice it)")
+          .add(&P::min_probability, "min_probability", "", ParamRange::closed(0, 1),
+               "pixels of a lower probability of the object are boundary (the map's outline)");
   return schema;
 }
 
@@ -30,10 +32,17 @@ void ColourBoundaryParams::validate() const {
   schema().validate(*this);
 }
 
-cv::Mat colourBoundaryMap(const cv::Mat& bgr, const ColourBoundaryParams& params) {
+cv::Mat colourBoundaryMap(const cv::Mat& bgr, const cv::Mat& probability,
+                          const ColourBoundaryParams& params) {
   if (bgr.empty() || bgr.type() != CV_8UC3) {
     throw InputError(fmt::format("colour boundaries need an 8-bit BGR image, not type {}{}",
                                  bgr.type(), bgr.empty() ? " (empty)" : ""));
+  }
+  if (probability.type() != CV_32FC1 || probability.size() != bgr.size()) {
+    throw InputError(
+        fmt::format("colour boundaries: the probability map ({}x{}, type {}) must be "
+                    "CV_32FC1 of the colour image's size ({}x{})",
+                    probability.cols, probability.rows, probability.type(), bgr.cols, bgr.rows));
   }
   cv::Mat grey, dark_lines, edges;
   cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
@@ -43,6 +52,7 @@ cv::Mat colourBoundaryMap(const cv::Mat& bgr, const ColourBoundaryParams& params
   cv::Canny(bgr, edges, params.edge_threshold, 2.0 * params.edge_threshold);
   cv::Mat boundary = dark_lines > params.line_contrast;
   boundary |= edges;
+  boundary |= probability < params.min_probability;
   cv::Mat interior;
   cv::bitwise_not(boundary, interior);
   return interior;

@@ -382,7 +382,7 @@ TEST_F(SoftSegmentTest, RegionsComeFromTheBoundaryMap) {
   SoftSegment s = buildSoftSegment(cloud_, prob_, static_cast<float>(k_.fx), params);
   cv::Mat boundary(80, 100, CV_8UC1, cv::Scalar(255));
   boundary.col(75) = 0;  // splits the segment into two instances
-  labelRegions(s, boundary, prob_, params.region_min_probability);
+  labelRegions(s, boundary, 100, 80);
   ASSERT_EQ(s.region.size(), s.size());
   for (size_t i = 0; i < s.size(); ++i) {
     const int u = s.pixel[i] % 100;
@@ -396,34 +396,8 @@ TEST_F(SoftSegmentTest, RegionsComeFromTheBoundaryMap) {
       EXPECT_EQ(s.region[i] == left_region, u < 75);
     }
   }
-  EXPECT_THROW(labelRegions(s, cv::Mat(80, 100, CV_16UC1, cv::Scalar(0)), prob_, 0.5f), InputError);
-  EXPECT_THROW(labelRegions(s, cv::Mat(81, 100, CV_8UC1, cv::Scalar(0)), prob_, 0.5f), InputError);
-}
-
-TEST_F(SoftSegmentTest, RegionsConnectOnlyThroughLikelyPixels) {
-  // Two instances side by side whose boundary map marks the line between them but stops short of
-  // their far side, where they meet a bin wall of low probability: the map closes the outline.
-  SoftSegmentParams params;
-  params.voxel_size = 0;
-  params.min_probability = 0.2f;
-  cv::Mat prob(80, 100, CV_32FC1, cv::Scalar(0.9));
-  prob.rowRange(70, 80) = 0.3;  // the wall: in the segment, below region_min_probability
-  const SoftSegment built = buildSoftSegment(cloud_, prob, static_cast<float>(k_.fx), params);
-  cv::Mat boundary(80, 100, CV_8UC1, cv::Scalar(255));
-  boundary(cv::Rect(50, 0, 1, 70)) = 0;
-  const auto regionAt = [&](const SoftSegment& s, int u, int v) {
-    const auto it = std::find(s.pixel.begin(), s.pixel.end(), v * 100 + u);
-    return s.region[static_cast<size_t>(it - s.pixel.begin())];
-  };
-  SoftSegment s = built;
-  labelRegions(s, boundary, prob, params.region_min_probability);
-  EXPECT_GE(regionAt(s, 20, 30), 1);
-  EXPECT_GE(regionAt(s, 80, 30), 1);
-  EXPECT_NE(regionAt(s, 20, 30), regionAt(s, 80, 30));
-  EXPECT_EQ(regionAt(s, 20, 75), -1);  // the wall is no instance's
-  s = built;
-  labelRegions(s, boundary, prob, 0.0f);  // through the wall: one region
-  EXPECT_EQ(regionAt(s, 20, 30), regionAt(s, 80, 30));
+  EXPECT_THROW(labelRegions(s, cv::Mat(80, 100, CV_16UC1, cv::Scalar(0)), 100, 80), InputError);
+  EXPECT_THROW(labelRegions(s, cv::Mat(81, 100, CV_8UC1, cv::Scalar(0)), 100, 80), InputError);
 }
 
 }  // namespace

@@ -2,9 +2,10 @@
 // Instance boundaries from the colour image, for a bin of identical objects packed side by side,
 // which a network's map covers as one surface and whose depth shows no step between them: the
 // gaps between them are thin dark lines (a morphological black-hat finds them) and the outlines
-// of their faces colour edges (Canny). The map this gives has the format of a boundary network's
-// (labelRegions); print on the objects adds boundaries inside them, which split no object when
-// the print's lines do not cross it.
+// of their faces colour edges (Canny). Those edges rarely close an object's outline against its
+// surroundings (a bin's wall); the object's map does, so where it is low is boundary too. The map
+// this gives has the format of a boundary network's (labelRegions); print on the objects adds
+// boundaries inside them, which split no object when the print's lines do not cross it.
 
 #include <opencv2/core/mat.hpp>
 
@@ -24,6 +25,8 @@ struct ColourBoundaryParams {
   int line_contrast = 20;
   /// Canny's lower threshold on the colour gradient (the upper one is twice it).
   int edge_threshold = 50;
+  /// Pixels whose probability of the object is below this are boundary: the map closes outlines.
+  float min_probability = 0.5f;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
   static const ParamSet<ColourBoundaryParams>& schema();
@@ -33,8 +36,9 @@ struct ColourBoundaryParams {
   bool appliesTo(int instances) const { return enabled && instances >= min_instances; }
 };
 
-/// The boundary map of `bgr` (CV_8UC3): CV_8UC1 of its size, 255 interior, 0 on a boundary.
-/// Throws InputError for another type or an empty image.
-cv::Mat colourBoundaryMap(const cv::Mat& bgr, const ColourBoundaryParams& params);
+/// The boundary map of `bgr` (CV_8UC3) for an object whose map is `probability` (CV_32FC1, its
+/// size): CV_8UC1, 255 interior, 0 on a boundary. Throws InputError for other types or sizes.
+cv::Mat colourBoundaryMap(const cv::Mat& bgr, const cv::Mat& probability,
+                          const ColourBoundaryParams& params);
 
 }  // namespace stocs

@@ -90,9 +90,6 @@ const ParamSet<SoftSegmentParams>& SoftSegmentParams::schema() {
                "pixel samples across a voxel at the segment's far depth: sets the scan stride; 0: "
                "every pixel")
           .flag("--samples-per-voxel")
-          .add(&SoftSegmentParams::region_min_probability, "region_min_probability", "",
-               ParamRange::closed(0, 1),
-               "instance regions connect only through pixels of at least this probability")
           .nest(&SoftSegmentParams::normals, "normals", OrganizedNormalParams::schema());
   return schema;
 }
@@ -453,17 +450,12 @@ SoftSegment buildSoftSegment(const OrganizedCloud& cloud, const cv::Mat& probabi
                          representative);
 }
 
-void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, const cv::Mat& probability,
-                  float min_probability) {
-  const int width = probability.cols;
-  if (boundary_map.size() != probability.size()) {
+void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height) {
+  if (boundary_map.cols != width || boundary_map.rows != height) {
     throw InputError(fmt::format("boundary map is {}x{} but the image is {}x{}", boundary_map.cols,
-                                 boundary_map.rows, width, probability.rows));
+                                 boundary_map.rows, width, height));
   }
-  if (probability.type() != CV_32FC1) throw InputError("probability image must be CV_32FC1");
-  cv::Mat interior = boundary_map.clone();
-  if (boundary_map.type() == CV_8UC1) interior.setTo(0, probability < min_probability);
-  const BoundaryRegions regions(interior);  // checks the type
+  const BoundaryRegions regions(boundary_map);  // checks the type
   segment.region.resize(segment.size());
   for (size_t i = 0; i < segment.size(); ++i) {
     const int region = regions.at(segment.pixel[i] % width, segment.pixel[i] / width);

@@ -34,9 +34,6 @@ struct SoftSegmentParams {
   /// the scan takes every s-th row and column, s = floor(voxel footprint in pixels / this), at
   /// least 1. 0 scans every pixel.
   float samples_per_voxel = 2.0f;
-  /// Instance regions (labelRegions) connect only through pixels of at least this probability: a
-  /// boundary map need not close an outline that the map already draws (objects against a bin).
-  float region_min_probability = 0.5f;
   OrganizedNormalParams normals;
 
   /// Key, range, unit and meaning of every field (docs/parameters.md).
@@ -79,10 +76,9 @@ int segmentPixelStride(const OrganizedCloud& cloud, const cv::Mat& probability, 
 
 /// Splits the segment into instance regions with a boundary map (CV_8UC1, same size as the image;
 /// values >= 128 are object interior, lower values are boundaries, as in the StoCS `edge.png` and
-/// the BOP `edge/` extension): each region is a 4-connected component of interior pixels whose
-/// `probability` (the segment's map, CV_32FC1) is at least `min_probability`, and a point takes
-/// the region of its representative pixel. Throws InputError on a type or size mismatch.
-void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, const cv::Mat& probability,
-                  float min_probability);
+/// the BOP `edge/` extension): each region is a 4-connected component of interior pixels, and a
+/// point takes the region of its representative pixel. Throws InputError on a type or size
+/// mismatch.
+void labelRegions(SoftSegment& segment, const cv::Mat& boundary_map, int width, int height);
 
 }  // namespace stocs
