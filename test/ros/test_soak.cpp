@@ -7,17 +7,20 @@
 //  - accounting: every published frame is accounted for on ~statistics: each message was received,
 //    and sent = estimated + replaced + rejected + kept + dropped (by reason) + still queued, with
 //    no frame in progress once the input stops; every estimated frame reached ~objects;
-//  - latency (input stamp to ~objects arrival) steady, last third of the time after the warm-up
-//    against the first third, each at most 1.5 times:
-//     - always, the median of the latency relative to the output's own estimation time (the sum of
-//       its objects' estimation_time). A backlog grows the wait before and after estimation, so
-//       this ratio; a change of the machine's load scales both and leaves it (on the 2 shared
-//       cores, the raw median of a 25 s run's thirds once moved 1.9x, while in other runs it
-//       moved with the estimation time and the ratio stayed within 1.09-1.15);
-//     - in runs whose thirds hold at least kLongRunSamples outputs (the 5-minute run, not CI's
-//       25 s): the node's CPU time per output (an estimation that slows down as the node runs),
-//       and the p95 (a backlog that only the slowest frames hit), which fails only when it grew
-//       both in seconds and relative to the estimation time. The raw p95 alone moves with the
+//  - backlog: no ~statistics message after the warm-up reports more than kMaxFramesInProgress
+//    frames in progress (the node's design: one estimated, one waiting, replaced by a newer one);
+//  - latency (input stamp to ~objects arrival) steady, in runs whose thirds hold at least
+//    kLongRunSamples outputs (the 5-minute run, not CI's 25 s, whose 6.7 s thirds a burst of the
+//    shared host's load decides), last third of the time after the warm-up against the first
+//    third, each at most 1.5 times:
+//     - the median of the latency relative to the output's own estimation time (the sum of its
+//       objects' estimation_time). A backlog grows the wait before and after estimation, so this
+//       ratio; a change of the machine's load scales both when the estimation is most of the
+//       latency, but not when the wait is (in the 25 s run about 1 ms of 3 ms: a CI run on
+//       2026-12-01 measured 3.58 -> 7.37 on a commit whose local runs passed);
+//     - the node's CPU time per output (an estimation that slows down as the node runs);
+//     - the p95 (a backlog that only the slowest frames hit), which fails only when it grew both
+//       in seconds and relative to the estimation time. The raw p95 alone moves with the
 //       machine's load: it did, both ways, when the virtual machine lost 40-90% of its CPU time
 //       to the hypervisor for minutes (steal time). The ratio's p95 alone moves with the
 //       estimation time's spread, now that estimation is a small part of the latency (a CI run:
@@ -63,10 +66,12 @@ constexpr char kNode[] = "/stocs";
 constexpr size_t kRssWindow = 5;           // one-second samples per median
 constexpr double kMaxRssGrowth = 0.05;     // fraction
 constexpr double kMaxLatencyGrowth = 1.5;  // last third / first third
-// Outputs per third before the CPU per output and the p95 are judged: the 5-minute run's, not CI's
+// Outputs per third before latency and CPU per output are judged: the 5-minute run's, not CI's
 // 25 s run (about 200 per third, 6.7 s each, where a burst of the shared host's load decides
-// both; the measurements are in docs/reliability.md).
+// them; the measurements are in docs/reliability.md).
 constexpr size_t kLongRunSamples = 400;
+// One frame estimated, one waiting (a newer one replaces it) and one being handed to the worker.
+constexpr uint64_t kMaxFramesInProgress = 3;
 constexpr double kSettleTimeout = 60;  // seconds for the node to finish after the input stops
 
 /// The pid of `node`, through the master's lookupNode and the node's XML-RPC getPid.
@@ -142,6 +147,8 @@ class StatisticsListener {
         [this](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
           std::lock_guard<std::mutex> lock(mutex_);
           counts_ = statisticsCounts(*m);
+          if (judging_)
+            max_in_progress_ = std::max(max_in_progress_, counts_["frames in progress"]);
         };
     sub_ = ros::NodeHandle().subscribe<diagnostic_msgs::DiagnosticArray>(
         std::string(kNode) + "/statistics", 10, on_message);
@@ -152,9 +159,22 @@ class StatisticsListener {
     return counts_;
   }
 
+  /// From now on, remember the most frames in progress that any message reports.
+  void startJudging() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    judging_ = true;
+  }
+
+  uint64_t maxInProgress() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return max_in_progress_;
+  }
+
  private:
   mutable std::mutex mutex_;
   std::map<std::string, uint64_t> counts_;
+  bool judging_ = false;
+  uint64_t max_in_progress_ = 0;
   ros::Subscriber sub_;
 };
 
@@ -247,6 +267,7 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
     if (cpu_at_warmup < 0 && t >= g_params.warmup) {
       cpu_at_warmup = cpuSeconds(pid);
       load_at_warmup = loadAverage();
+      statistics.startJudging();
     }
     if (cpu_first_end < 0 && t >= g_params.warmup + third) cpu_first_end = cpuSeconds(pid);
     if (cpu_last_start < 0 && t >= g_params.duration - third) cpu_last_start = cpuSeconds(pid);
@@ -340,7 +361,8 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
 
   const std::string summary = fmt::format(
       "soak: {:.0f} s at {:.0f} Hz, warm-up {:.0f} s: {} frames sent; ~statistics: {} estimated, "
-      "{} replaced, {} rejected, {} kept, {} cloud messages dropped, {} queued; {} service calls; "
+      "{} replaced, {} rejected, {} kept, {} cloud messages dropped, {} queued, at most {} in "
+      "progress after warm-up; {} service calls; "
       "RSS {:.0f} kB after warm-up, {:.0f} kB at the end ({:+.2f}%), max {:.0f} kB; latency of "
       "{} outputs after warm-up p50 {:.3f} s, p95 {:.3f} s; first third ({} outputs) p50 {:.3f} s, "
       "p95 {:.3f} s, latency / estimation time p50 {:.2f} p95 {:.2f}, node CPU per output {:.3f} "
@@ -350,22 +372,27 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
       "{:.1f} s ({:.0f}% of one core); load average {:.1f} after warm-up, {:.1f} at the end",
       g_params.duration, g_params.rate, g_params.warmup, sent, c["frames estimated"],
       c["frames replaced"], c["frames rejected"], c["frames kept"], dropped_cloud,
-      c["queued " + cloud_topic], service_calls_.load(), rss_start, rss_end,
-      100 * (rss_end / rss_start - 1), rss_max, all.size(), quantile(all, 0.5), quantile(all, 0.95),
-      first.size(), p50_first, p95_first, ratio_p50_first, ratio_p95_first, cpu_per_output_first,
-      last.size(), p50_last, p95_last, ratio_p50_last, ratio_p95_last, cpu_per_output_last,
-      cpu_after_warmup, 100 * cpu_after_warmup / (g_params.duration - g_params.warmup),
-      load_at_warmup, load_at_end);
+      c["queued " + cloud_topic], statistics.maxInProgress(), service_calls_.load(), rss_start,
+      rss_end, 100 * (rss_end / rss_start - 1), rss_max, all.size(), quantile(all, 0.5),
+      quantile(all, 0.95), first.size(), p50_first, p95_first, ratio_p50_first, ratio_p95_first,
+      cpu_per_output_first, last.size(), p50_last, p95_last, ratio_p50_last, ratio_p95_last,
+      cpu_per_output_last, cpu_after_warmup,
+      100 * cpu_after_warmup / (g_params.duration - g_params.warmup), load_at_warmup, load_at_end);
   std::cout << summary << std::endl;
   ROS_INFO("%s", summary.c_str());
 
   EXPECT_LT(rss_end, rss_start * (1 + kMaxRssGrowth))
       << "resident memory grew from " << rss_start << " kB to " << rss_end << " kB";
+  // A backlog in the node is frames piling up between the inputs and the worker.
+  EXPECT_LE(statistics.maxInProgress(), kMaxFramesInProgress)
+      << "more frames in progress at once than one estimated, one waiting and one handed over";
   ASSERT_GE(ratio_first.size(), 10u) << "too few found objects in the first third";
   ASSERT_GE(ratio_last.size(), 10u) << "too few found objects in the last third";
-  EXPECT_LE(ratio_p50_last, kMaxLatencyGrowth * ratio_p50_first)
-      << "the median latency / estimation time grew from " << ratio_p50_first << " to "
-      << ratio_p50_last;
+  if (ratio_first.size() >= kLongRunSamples && ratio_last.size() >= kLongRunSamples) {
+    EXPECT_LE(ratio_p50_last, kMaxLatencyGrowth * ratio_p50_first)
+        << "the median latency / estimation time grew from " << ratio_p50_first << " to "
+        << ratio_p50_last;
+  }
   if (first.size() >= kLongRunSamples && last.size() >= kLongRunSamples) {
     EXPECT_LE(cpu_per_output_last, kMaxLatencyGrowth * cpu_per_output_first)
         << "the node's CPU time per output grew from " << cpu_per_output_first << " s to "
