@@ -50,6 +50,16 @@ std::optional<Message> waitForMessage(const std::string& topic, double timeout,
   return out;
 }
 
+/// Calls the service `name` once, on a persistent connection that the client closes after the
+/// answer. With roscpp's one-shot calls (ros::service::call) the server closes the connection
+/// after answering, and the client may see the hang-up before the answer and report a failure
+/// (ros/ros_comm#1976; a CI run on 2026-12-02: the node answered, the call returned false).
+template <class Service>
+bool callService(const std::string& name, Service& srv) {
+  ros::ServiceClient client = ros::NodeHandle().serviceClient<Service>(name, /*persistent=*/true);
+  return client.call(srv);
+}
+
 /// Image 0 of scene 0 of a generated BOP dataset as the node's inputs: an organized cloud
 /// (frame "camera") and the 32FC1 probability image of object 1, stamps unset.
 struct InputFrame {

@@ -96,7 +96,7 @@ class BadInputs : public ::testing::Test {
   static Estimate::Response estimate() {
     EXPECT_TRUE(ros::service::waitForService(kService, ros::Duration(60)));
     Estimate srv;
-    EXPECT_TRUE(ros::service::call(kService, srv));
+    EXPECT_TRUE(callService(kService, srv));
     return srv.response;
   }
 
@@ -206,7 +206,7 @@ TEST_F(BadInputs, BadFramesGiveNoOutputAndTheNodeKeepsAnswering) {
 std_srvs::Trigger::Response reloadWith(const std::string& config) {
   std::ofstream(g_config) << config;
   std_srvs::Trigger srv;
-  EXPECT_TRUE(ros::service::call("/stocs/reload", srv));
+  EXPECT_TRUE(callService("/stocs/reload", srv));
   return srv.response;
 }
 
@@ -264,7 +264,7 @@ TEST_F(BadInputs, ConcurrentServiceCallsAreAllAnswered) {
   const auto call = [](std::vector<std::string> objects) {
     Estimate srv;
     srv.request.objects = std::move(objects);
-    EXPECT_TRUE(ros::service::call(kService, srv));
+    EXPECT_TRUE(callService(kService, srv));
     return srv.response;
   };
   std::vector<std::future<Estimate::Response>> estimates;

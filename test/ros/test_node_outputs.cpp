@@ -83,7 +83,7 @@ class NodeOutputs : public ::testing::Test {
     EXPECT_TRUE(ros::service::waitForService(name, ros::Duration(kFirstOutputTimeout)));
     Estimate srv;
     srv.request = std::move(request);
-    EXPECT_TRUE(ros::service::call(name, srv)) << name;
+    EXPECT_TRUE(callService(name, srv)) << name;
     return srv.response;
   }
 

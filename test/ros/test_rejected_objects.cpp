@@ -129,7 +129,7 @@ TEST(RejectedObjects, TheServiceNamesTheRejectedObjects) {
   const std::string name = kNode + "/estimate";
   ASSERT_TRUE(ros::service::waitForService(name, ros::Duration(kFirstOutputTimeout)));
   Estimate srv;
-  ASSERT_TRUE(ros::service::call(name, srv)) << name;
+  ASSERT_TRUE(callService(name, srv)) << name;
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   ASSERT_EQ(srv.response.result.objects.size(), 1u) << srv.response.message;
   EXPECT_EQ(srv.response.result.objects[0].name, "box");

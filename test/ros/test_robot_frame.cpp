@@ -42,7 +42,7 @@ Estimate::Response callEstimate(const std::string& node, Estimate::Request reque
   EXPECT_TRUE(ros::service::waitForService(name, ros::Duration(kFirstOutputTimeout)));
   Estimate srv;
   srv.request = std::move(request);
-  EXPECT_TRUE(ros::service::call(name, srv)) << name;
+  EXPECT_TRUE(callService(name, srv)) << name;
   return srv.response;
 }
 
@@ -61,7 +61,7 @@ dynamic_reconfigure::Config setMinConfidence(double value) {
   p.value = value;
   srv.request.config.doubles.push_back(p);
   EXPECT_TRUE(ros::service::waitForService("/stocs/set_parameters", ros::Duration(30)));
-  EXPECT_TRUE(ros::service::call("/stocs/set_parameters", srv));
+  EXPECT_TRUE(callService("/stocs/set_parameters", srv));
   return srv.response.config;
 }
 

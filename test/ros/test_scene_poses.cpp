@@ -158,7 +158,7 @@ TEST(ScenePoses, ServiceTakesTheSegmentationInput) {
   const std::string name = g_expected.node + "/estimate";
   ASSERT_TRUE(ros::service::waitForService(name, ros::Duration(kFirstOutputTimeout)));
   Estimate with_probabilities = srv;
-  ASSERT_TRUE(ros::service::call(name, srv));
+  ASSERT_TRUE(callService(name, srv));
   ASSERT_TRUE(srv.response.success) << srv.response.message;
   EXPECT_EQ(srv.response.result.header.stamp, cloud->header.stamp);
   std::map<int, std::vector<Eigen::Isometry3d>> reported;
@@ -169,7 +169,7 @@ TEST(ScenePoses, ServiceTakesTheSegmentationInput) {
   expectInstancesFound(dataset, checkedTruth(dataset), reported);
 
   with_probabilities.request.probabilities.resize(1);
-  ASSERT_TRUE(ros::service::call(name, with_probabilities));
+  ASSERT_TRUE(callService(name, with_probabilities));
   EXPECT_FALSE(with_probabilities.response.success);
   EXPECT_NE(with_probabilities.response.message.find(
                 geometric ? "probabilities were given, but input.probability is geometric"

@@ -213,11 +213,11 @@ class Soak : public ::testing::Test {
   }
 
   /// Calls ~estimate every service_period seconds until `stop`; counts calls and failures.
-  void callService(const std::atomic<bool>& stop) {
+  void callEstimateUntil(const std::atomic<bool>& stop) {
     while (!stop) {
       ros::WallDuration(g_params.service_period).sleep();
       Estimate srv;
-      const bool called = ros::service::call(std::string(kNode) + "/estimate", srv);
+      const bool called = callService(std::string(kNode) + "/estimate", srv);
       ++service_calls_;
       if (!called || !srv.response.success) {
         ++service_failures_;
@@ -255,7 +255,7 @@ TEST_F(Soak, MemoryCountsAndLatencyStaySteady) {
     std::lock_guard<std::mutex> lock(mutex_);
     start_ = start;
   }
-  std::thread service([&] { callService(stop); });
+  std::thread service([&] { callEstimateUntil(stop); });
   ros::WallRate rate(g_params.rate);
   for (double t = 0; t < g_params.duration; t = (ros::Time::now() - start).toSec()) {
     const ros::Time stamp = ros::Time::now();
