@@ -56,7 +56,8 @@ target_include_directories(stocs_model PRIVATE ${XXHASH_INCLUDE_DIR})
 stocs_add_module(estimation PUBLIC stocs_model stocs_segmentation PRIVATE OpenMP::OpenMP_CXX Threads::Threads)
 stocs_add_module(tracking PUBLIC stocs_estimation PRIVATE OpenMP::OpenMP_CXX)
 stocs_add_module(segmentation PUBLIC stocs_geometry opencv_core
-  PRIVATE stocs_io opencv_dnn opencv_imgproc ${PCL_FEATURES_LIBRARIES} ${PCL_SEGMENTATION_LIBRARIES})
+  PRIVATE stocs_io opencv_dnn opencv_imgproc ${PCL_FEATURES_LIBRARIES} ${PCL_SEGMENTATION_LIBRARIES}
+  ${PCL_SAMPLE_CONSENSUS_LIBRARIES})
 target_include_directories(stocs_segmentation SYSTEM PRIVATE ${PCL_INCLUDE_DIRS})
 target_compile_definitions(stocs_segmentation PRIVATE ${PCL_DEFINITIONS})
 stocs_add_module(sim PUBLIC stocs_io

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
+#include <tuple>
 
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/estimation/stages/colour_agreement.h"
 #include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/geometry/knn_index.h"
+#include "stocs/segmentation/support_plane.h"
 
 namespace stocs {
 namespace {
@@ -32,6 +35,12 @@ struct Candidate {
   std::vector<int> confirmed;
   float left_out = 0;  ///< the confirmed surface it leaves out, as a share of its own (leftOut)
   ColourAgreement colour;
+  /// Signed distance of its lowest point from the plane under the object (NaN: no plane) ...
+  float height = std::numeric_limits<float>::quiet_NaN();
+  /// ... and the share of its surface samples that lie on the plane (within kSupportNoise).
+  float footing = 0;
+  float unsupported =
+      0;  ///< 0 to 1: how far it floats over or sinks into the plane (markUnsupported)
   float judgement = 0;  ///< higher is better
 };
 
@@ -42,9 +51,9 @@ struct Candidate {
 constexpr float kFitFloor = 0.9f;
 
 /// The estimator's ranking of a pose (StocsEstimator::search): its objective times the share of its
-/// visible surface not in free space.
+/// visible surface not in free space; here also times 1 - how far it is from resting (unsupported).
 float ranking(const Candidate& c) {
-  return c.lcp.score * (1 - c.free);
+  return c.lcp.score * (1 - c.free) * (1 - c.unsupported);
 }
 
 /// Within the floor by ranking: a turn that explains a little less of the segment but puts no
@@ -68,6 +77,21 @@ constexpr int kCellPixels = 4;
 
 constexpr size_t kExplainedPoints = 300;  // segment or surface points checked, an even subsample
 
+/// The plane under an object is fitted to about this many measured points around it ...
+constexpr size_t kSupportPoints = 2000;
+/// ... those within this distance of it lie on it (metres: a depth sensor's noise at a metre) ...
+constexpr float kSupportTolerance = 0.004f;
+/// ... and it is a support where at least this share of them do (a table seen beside the object).
+constexpr float kSupportShare = 0.25f;
+/// A candidate rests on the plane where its lowest point lies within this of it (metres: the
+/// objective's delta_s) with at least kFooting of its surface samples on it: a face, not the edge
+/// of a tilted turn under an object held over the table ...
+constexpr float kResting = 0.005f;
+constexpr float kFooting = 0.03f;
+/// ... and a candidate whose lowest point lies farther from the plane than a resting one's by more
+/// than this (metres: depth noise on a refined pose) floats over it or sinks into it.
+constexpr float kSupportNoise = 0.002f;
+
 /// What the data says of a candidate pose: the segment's shape under it (objective), the measured
 /// surface (free space), the segment points it leaves unexplained (a handle seen where the pose
 /// has none), and the measured surface that another candidate's surface meets but its own does
@@ -85,13 +109,50 @@ class CandidateMeasure {
     for (size_t i = 0; i < segment.size(); i += stride) checked_.push_back(i);
   }
 
-  void operator()(Candidate& c, int region) const {
+  /// Measures `c` on the segment's `region` (-1: all of it), over the plane under the object
+  /// (supportUnder; null: none).
+  void operator()(Candidate& c, int region, const Plane* support) const {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
     c.unexplained = unexplained(c.pose, region);
     if (evidence_.surface) {
       compareSurface(c);
       c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
     }
+    if (support) std::tie(c.height, c.footing) = onPlane(*support, c.pose);
+  }
+
+  /// The plane the object at `pose` rests on, if any: fitted to the measured surface around it
+  /// (within its diameter of its centre's pixel, its own surface at `pose` left out), and under it
+  /// (its centre on the camera's side).
+  std::optional<Plane> supportUnder(const Eigen::Isometry3f& pose) const {
+    if (!evidence_.surface) return std::nullopt;
+    const OrganizedCloud& cloud = evidence_.surface->cloud();
+    const CameraIntrinsics& camera = evidence_.surface->camera();
+    const Eigen::Vector3f centre = pose * sampleCentre(context_.model);
+    if (!(centre.z() > 0)) return std::nullopt;
+    const Eigen::Vector2f at = camera.project(centre);
+    const float reach_px = static_cast<float>(camera.fx) * context_.model.diameter / centre.z();
+    const int u0 = std::max(0, static_cast<int>(at.x() - reach_px));
+    const int v0 = std::max(0, static_cast<int>(at.y() - reach_px));
+    const int u1 = std::min(cloud.width - 1, static_cast<int>(at.x() + reach_px));
+    const int v1 = std::min(cloud.height - 1, static_cast<int>(at.y() + reach_px));
+    if (u1 < u0 || v1 < v0) return std::nullopt;
+    const double area = static_cast<double>(u1 - u0 + 1) * (v1 - v0 + 1);
+    const int stride = std::max(1, static_cast<int>(std::sqrt(area / kSupportPoints)));
+    const Eigen::Isometry3f to_model = pose.inverse();
+    std::vector<Eigen::Vector3f> around;
+    for (int v = v0; v <= v1; v += stride) {
+      for (int u = u0; u <= u1; u += stride) {
+        const int index = v * cloud.width + u;
+        if (cloud.isValid(index) && !nearModel(to_model * cloud.points[index])) {
+          around.push_back(cloud.points[index]);
+        }
+      }
+    }
+    const auto min_inliers = static_cast<size_t>(kSupportShare * static_cast<float>(around.size()));
+    std::optional<Plane> plane = dominantPlane(around, kSupportTolerance, min_inliers);
+    if (plane && !(plane->distance(centre) > 0)) plane.reset();
+    return plane;
   }
 
   /// The measured surface in the cells where the surface of a candidate that fits (kFitFloor) is
@@ -161,6 +222,20 @@ class CandidateMeasure {
         std::unique(pixels.begin(), pixels.end(), [&](int a, int b) { return cell(a) == cell(b); }),
         pixels.end());
     return pixels;
+  }
+
+  /// The model at `pose` against `plane`: its lowest sample's signed distance, and the share of
+  /// its samples within kSupportNoise of it.
+  std::pair<float, float> onPlane(const Plane& plane, const Eigen::Isometry3f& pose) const {
+    float lowest = std::numeric_limits<float>::infinity();
+    size_t on = 0;
+    for (const Eigen::Vector3f& p : context_.model.points) {
+      const float height = plane.distance(pose * p);
+      lowest = std::min(lowest, height);
+      on += std::abs(height) <= kSupportNoise;
+    }
+    const size_t samples = std::max<size_t>(1, context_.model.points.size());
+    return {lowest, static_cast<float>(on) / static_cast<float>(samples)};
   }
 
   bool nearModel(const Eigen::Vector3f& in_model) const {
@@ -234,15 +309,35 @@ void refine(Candidate& c, int region, int steps, const RefinementContext& contex
   c.pose = c.run->pose;
 }
 
+/// Sets each candidate's `unsupported`, 0 to 1: how much farther its lowest point lies from the
+/// plane under the object than the nearest resting candidate's (kResting, kFooting), from
+/// kSupportNoise (0) to twice it (1); all 0 where none rests on a plane (an object held or on
+/// another, or no plane found).
+void markUnsupported(std::vector<Candidate>& candidates) {
+  float nearest = std::numeric_limits<float>::infinity();
+  for (const Candidate& c : candidates) {
+    if (std::isfinite(c.height) && c.footing >= kFooting) {
+      nearest = std::min(nearest, std::abs(c.height));
+    }
+  }
+  for (Candidate& c : candidates) c.unsupported = 0;
+  if (!(nearest <= kResting)) return;
+  for (Candidate& c : candidates) {
+    const float excess = std::abs(c.height) - nearest - kSupportNoise;
+    if (excess > 0) c.unsupported = std::min(1.0f, excess / kSupportNoise);
+  }
+}
+
 /// The candidates' judgements (the instance first): less the shares in free space, of the segment
-/// left unexplained and of the confirmed surface left out, plus the colour agreement where every
-/// candidate has colour evidence; -1 for an alternative below kFitFloor.
+/// left unexplained and of the confirmed surface left out, and how far it is from resting on the
+/// plane under the object where another rests on it (unsupported), plus the colour agreement
+/// where every candidate has colour evidence; -1 for an alternative below kFitFloor.
 void judge(std::vector<Candidate>& candidates) {
   const bool coloured = std::all_of(candidates.begin(), candidates.end(),
                                     [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
     c.judgement = (fits(c, candidates.front()) ? 0.0f : -1.0f) - c.free - c.unexplained -
-                  c.left_out + (coloured ? c.colour.agreement : 0);
+                  c.left_out - c.unsupported + (coloured ? c.colour.agreement : 0);
   }
 }
 
@@ -262,14 +357,21 @@ size_t chosen(const std::vector<Candidate>& candidates) {
              : 0;
 }
 
-/// Adds to `out` the candidates that fit as well as `best`, as motions from it: each a pose of its
+/// A candidate's judgement less its support: what the data say of it, without the prior that
+/// objects rest (an object held just over the table fits as well as a turn that would rest).
+float withoutSupport(const Candidate& c) {
+  return c.judgement + c.unsupported;
+}
+
+/// Adds to `out` the candidates that fit as well as `best` (without the support: a track keeps the
+/// turn it follows among them), as motions from it: each a pose of its
 /// own (not `best` again after refinement, not a declared symmetry of it, not one listed before).
 void addEquallyFitting(const std::vector<Candidate>& candidates, const Candidate& best,
                        const PreparedModel& model, std::vector<ShapeAlternative>& out) {
   const Eigen::Vector3f centre = sampleCentre(model.model);
   const float distance = model.model.sampling_radius;
   for (const Candidate& c : candidates) {
-    if (best.judgement - c.judgement >= kAlternativeTie) continue;
+    if (withoutSupport(best) - withoutSupport(c) >= kAlternativeTie) continue;
     const ShapeAlternative a = motionBetween(best.pose, c);
     if (a.angle < kDistinctAngle) continue;  // the same pose
     if (isSymmetry(a.motion, model.symmetries, centre, kDistinctAngle, distance)) continue;
@@ -299,13 +401,16 @@ bool turnsBetweenSteps(const PreparedModel& model) {
 void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const Candidate& best,
                           const LatheAxis& lathe, const PreparedModel& model,
                           const CandidateMeasure& measure, const ConfirmedSurface& surface,
-                          int threads) {
+                          const Plane* support, int threads) {
   const float angle = kBetweenSteps * lathe.step;
   std::vector<Candidate> turns{first, best, Candidate(best.pose * lathe.turn(angle), lathe.shift),
                                Candidate(best.pose * lathe.turn(-angle), lathe.shift)};
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 2; k < turns.size(); ++k) {
-    measure(turns[k], instance.region);
+    measure(turns[k], instance.region, support);
+  }
+  markUnsupported(turns);
+  for (size_t k = 2; k < turns.size(); ++k) {
     if (fits(turns[k], first)) turns[k].left_out = measure.leftOut(turns[k], surface);
   }
   judge(turns);
@@ -331,8 +436,11 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     }
     dropRepeats(candidates, proximity, context.model.sampling_radius);
   }
+  const std::optional<Plane> plane = measure.supportUnder(instance.pose);
+  const Plane* support = plane ? &*plane : nullptr;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t k = 0; k < candidates.size(); ++k) measure(candidates[k], instance.region);
+  for (size_t k = 0; k < candidates.size(); ++k) measure(candidates[k], instance.region, support);
+  markUnsupported(candidates);
   const ConfirmedSurface surface = measure.confirmedSurface(candidates);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 0; k < candidates.size(); ++k) {
@@ -345,7 +453,8 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     // The rest of the steps can take it elsewhere (into free space): judged again there, it must
     // still be better than the instance.
     refine(candidates[kept], instance.region, context.icp->params().iterations, context, taken);
-    measure(candidates[kept], instance.region);
+    measure(candidates[kept], instance.region, support);
+    markUnsupported(candidates);
     candidates[kept].left_out = measure.leftOut(candidates[kept], surface);
     judge(candidates);
     if (candidates[kept].judgement <= candidates.front().judgement) kept = 0;
@@ -356,7 +465,7 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   addEquallyFitting(candidates, best, model, instance.ambiguous);
   if (lathe) {
     addTurnsBetweenSteps(instance, candidates.front(), best, *lathe, model, measure, surface,
-                         threads);
+                         support, threads);
   }
   const bool turned = kept > 0;  // an alternative, not the instance itself
   if (turned) {

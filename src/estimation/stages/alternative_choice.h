@@ -22,9 +22,13 @@ constexpr float kAlternativeTie = 0.03f;
 /// fits them alike) judged by their colour agreement
 /// (colour_agreement.h, where every candidate has colour evidence) less the share of their visible
 /// surface in free space, the share of the segment they leave unexplained and the share of the
-/// measured surface confirmed under another candidate that they leave out. An alternative
+/// measured surface confirmed under another candidate that they leave out, and how far their
+/// underside lies from the plane under the object where another candidate rests on it
+/// (support_plane.h: a box turned onto a narrower side floats over the table; also in the
+/// ranking). An alternative
 /// judged better than the instance by kAlternativeTie or more replaces it (objective, covariance);
-/// the distinct poses within kAlternativeTie of the kept one are named in InstancePose::ambiguous,
+/// the distinct poses within kAlternativeTie of the kept one, support left out (a prior, not
+/// data), are named in InstancePose::ambiguous,
 /// and its covariance spans them. A lathe's body turns by any angle, so the kept pose turned
 /// between its steps about the model's lathe axis is judged and named alike. Adds the ICP steps
 /// taken to `steps`.
