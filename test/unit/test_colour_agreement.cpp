@@ -1,6 +1,7 @@
 // Colour agreement on a rendered box with a red label on one face: the right pose agrees, the box
 // turned over (the same depth, the label out of view) does not, whatever the light's colour and
-// intensity, and a model or frame without colour gives no evidence.
+// intensity, only colours in their place count above chance, and a model or frame without colour
+// gives no evidence.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -81,6 +82,21 @@ TEST_F(ColourAgreementTest, TheLightsColourAndIntensityDoNotChangeTheVerdict) {
   EXPECT_GT(right.agreement, 0.95f);
   EXPECT_LT(wrong.agreement, right.agreement - 0.2f);
   EXPECT_NEAR(wrong.agreement, agreement(turned_, &white).agreement, 0.05f);
+}
+
+// The label in its place agrees well above the same colours paired at random; a box of one colour
+// agrees as well whichever way it faces, so its colour is no evidence (colourEvidence 0).
+TEST_F(ColourAgreementTest, OnlyColoursInTheirPlaceAreEvidence) {
+  const cv::Mat white = image(Eigen::Vector3f::Ones());
+  const ColourAgreement right = agreement(truth_, &white);
+  EXPECT_GT(colourEvidence(right), 0.2f);
+  EXPECT_LT(right.chance, right.agreement - 0.2f);
+  ObjectModel blue = model_;
+  for (Colour& c : blue.colours) c = Colour(0.3f, 0.5f, 0.8f);
+  const ColourAgreement plain =
+      colourAgreement(blue, turned_, FreeSpaceCheck(cloud_, camera_, FreeSpaceParams{}), &white);
+  ASSERT_TRUE(plain.evidence);
+  EXPECT_EQ(colourEvidence(plain), 0.0f) << plain.agreement << " against chance " << plain.chance;
 }
 
 TEST_F(ColourAgreementTest, NoColourOrTooFewSamplesGiveNoEvidence) {

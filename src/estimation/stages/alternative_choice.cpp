@@ -56,13 +56,24 @@ float ranking(const Candidate& c) {
   return c.lcp.score * (1 - c.free) * (1 - c.unsupported);
 }
 
+/// The share of its samples facing the camera that the segment matches: the objective without the
+/// model's sampling density (a scanned point model with holes in one face has fewer samples there).
+float matchedShare(const Candidate& c) {
+  return c.lcp.facing > 0 ? static_cast<float>(c.lcp.matched) / static_cast<float>(c.lcp.facing)
+                          : 0.0f;
+}
+
 /// Within the floor by ranking: a turn that explains a little less of the segment but puts no
 /// handle over the table the camera sees fits as the estimator ranks poses. Or by objective alone:
 /// a screened alternative's free share is that of a pose ICP has not settled yet (a flipped box
-/// still off its face).
+/// still off its face). Or as the data see it: it leaves no more of the segment unexplained and
+/// the segment matches as much of its visible surface (a turn showing a face of the model that
+/// the scan sampled sparsely).
 bool fits(const Candidate& c, const Candidate& instance) {
   return c.lcp.score >= kFitFloor * instance.lcp.score ||
-         ranking(c) >= kFitFloor * ranking(instance);
+         ranking(c) >= kFitFloor * ranking(instance) ||
+         (c.unexplained <= instance.unexplained + kAlternativeTie &&
+          matchedShare(c) >= kFitFloor * matchedShare(instance));
 }
 
 /// Measured surface that some candidate's visible surface meets (CandidateMeasure).
@@ -330,14 +341,17 @@ void markUnsupported(std::vector<Candidate>& candidates) {
 
 /// The candidates' judgements (the instance first): less the shares in free space, of the segment
 /// left unexplained and of the confirmed surface left out, and how far it is from resting on the
-/// plane under the object where another rests on it (unsupported), plus the colour agreement
-/// where every candidate has colour evidence; -1 for an alternative below kFitFloor.
+/// plane under the object where another rests on it (unsupported), plus the colour agreement where
+/// every candidate has colour evidence; where only some have (a model coloured from frames that
+/// saw one side), how much better than chance their colours agree (colourEvidence), 0 for the
+/// others. -1 for an alternative below kFitFloor.
 void judge(std::vector<Candidate>& candidates) {
   const bool coloured = std::all_of(candidates.begin(), candidates.end(),
                                     [](const Candidate& c) { return c.colour.evidence; });
   for (Candidate& c : candidates) {
+    const float colour = coloured ? c.colour.agreement : colourEvidence(c.colour);
     c.judgement = (fits(c, candidates.front()) ? 0.0f : -1.0f) - c.free - c.unexplained -
-                  c.left_out - c.unsupported + (coloured ? c.colour.agreement : 0);
+                  c.left_out - c.unsupported + colour;
   }
 }
 

@@ -1,6 +1,7 @@
 #include "stocs/estimation/stages/colour_agreement.h"
 
 #include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -45,16 +46,29 @@ ColourAgreement colourAgreement(const ObjectModel& model, const Eigen::Isometry3
     seen_sum += seen_rgb[k];
   }
   const Eigen::Vector3f gain = seen_sum.cwiseQuotient(model_sum.cwiseMax(1e-6f));
-  double total = 0;
-  for (size_t k = 0; k < model_rgb.size(); ++k) {
-    const Eigen::Vector3f lit = gain.cwiseProduct(model_rgb[k]);
+  const auto agreement = [&](const Eigen::Vector3f& model_colour, const Eigen::Vector3f& seen) {
+    const Eigen::Vector3f lit = gain.cwiseProduct(model_colour);
     // 2, the largest distance, where the gain leaves the model colour black.
     const float distance =
-        lit.sum() > 0 ? (chromaticity(lit) - chromaticity(seen_rgb[k])).lpNorm<1>() : 2.0f;
-    total += std::max(0.0f, 1 - distance / kChromaticityTolerance);
+        lit.sum() > 0 ? (chromaticity(lit) - chromaticity(seen)).lpNorm<1>() : 2.0f;
+    return std::max(0.0f, 1 - distance / kChromaticityTolerance);
+  };
+  // A permutation keeps the channel sums, so the chance pairs share the gain.
+  const size_t n = model_rgb.size();
+  double total = 0, chance = 0, squares = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const float placed = agreement(model_rgb[k], seen_rgb[k]);
+    const float shuffled = agreement(model_rgb[(k + n / 2) % n], seen_rgb[k]);
+    total += placed;
+    chance += shuffled;
+    squares += static_cast<double>(placed - shuffled) * (placed - shuffled);
   }
   result.evidence = true;
   result.agreement = static_cast<float>(total / result.samples);
+  result.chance = static_cast<float>(chance / result.samples);
+  const double mean = (total - chance) / result.samples;
+  const double variance = std::max(0.0, squares / result.samples - mean * mean);
+  result.chance_error = static_cast<float>(std::sqrt(variance / (result.samples - 1)));
   return result;
 }
 

@@ -17,6 +17,7 @@
 // coloured from frames 1-2: 0.24-0.51 at the truth, 0-0.23 at its half turns; RealColour test).
 
 #include <Eigen/Geometry>
+#include <cmath>
 
 #include "stocs/estimation/stages/free_space_check.h"
 #include "stocs/model/object_model.h"
@@ -35,8 +36,23 @@ constexpr float kChromaticityTolerance = 0.2f;
 struct ColourAgreement {
   bool evidence = false;  ///< at least kMinColourSamples samples were compared
   float agreement = 0;    ///< in [0, 1], higher: the colours agree; 0 without evidence
-  int samples = 0;        ///< samples compared
+  /// The agreement of the same pixels with the same model colours paired at random (each with the
+  /// colour of the sample half the list away): what the colours give where they say nothing of
+  /// the pose; equal to `agreement` on a face of one colour.
+  float chance = 0;
+  /// Standard error of agreement - chance (of the per-sample differences' mean).
+  float chance_error = 0;
+  int samples = 0;  ///< samples compared
 };
+
+/// What the colours say of the pose: its agreement above chance (the print in its place, not
+/// merely colours the model has), where it differs from chance by two standard errors; else 0, as
+/// without evidence (a face of a model coloured from frames that never saw it) or on a face of one
+/// colour (a plain mug, where the noise of a few samples would pick a turn).
+inline float colourEvidence(const ColourAgreement& a) {
+  const float above = a.agreement - a.chance;
+  return a.evidence && std::abs(above) >= 2 * a.chance_error ? above : 0.0f;
+}
 
 /// The colour agreement of `model` at `pose` (model to camera) with `colour` (CV_8UC3 BGR,
 /// registered with the cloud of `visibility`); no evidence when the model has no colour or
