@@ -111,6 +111,8 @@ std::string serialise(const PreparedModel& m) {
   std::ostringstream out(std::ios::binary);
   out.write(reinterpret_cast<const char*>(&m.model.diameter), sizeof(float));
   out.write(reinterpret_cast<const char*>(&m.model.sampling_radius), sizeof(float));
+  const uint8_t even = m.model.even_sampling ? 1 : 0;
+  out.write(reinterpret_cast<const char*>(&even), sizeof(even));
   writeVectors(out, m.model.points);
   writeVectors(out, m.model.normals);
   writeVectors(out, m.model.colours);
@@ -128,6 +130,11 @@ PreparedModel deserialise(const std::string& payload) {
   if (!(m.model.diameter > 0) || !(m.model.sampling_radius > 0)) {
     throw InputError("diameter or sampling radius is not positive");
   }
+  uint8_t even = 0;
+  if (!in.read(reinterpret_cast<char*>(&even), sizeof(even)) || even > 1) {
+    throw InputError("the even-sampling flag is missing or not 0 or 1");
+  }
+  m.model.even_sampling = even == 1;
   m.model.points = readVectors(in);
   m.model.normals = readVectors(in);
   if (m.model.points.size() != m.model.normals.size() || m.model.points.size() < 4) {

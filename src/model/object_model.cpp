@@ -79,6 +79,7 @@ ObjectModel prepareModel(const MeshData& mesh, const ModelSamplingParams& params
   ObjectModel model;
   model.diameter = pointSetDiameter(mesh.vertices);
   model.sampling_radius = params.sampling_ratio * model.diameter;
+  model.even_sampling = mesh.isMesh();
   const OrientedPoints dense = denseSurface(mesh, params, model.sampling_radius, rng);
   if (dense.points.empty()) throw InputError("model mesh has no triangle with a positive area");
 

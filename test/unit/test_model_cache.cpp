@@ -21,6 +21,7 @@ class ModelCacheTest : public ::testing::Test {
   void expectSameModel(const PreparedModel& a, const PreparedModel& b) {
     ASSERT_EQ(a.model.size(), b.model.size());
     EXPECT_EQ(a.model.diameter, b.model.diameter);
+    EXPECT_EQ(a.model.even_sampling, b.model.even_sampling);
     for (size_t i = 0; i < a.model.size(); ++i) {
       ASSERT_EQ(a.model.points[i], b.model.points[i]);
       ASSERT_EQ(a.model.normals[i], b.model.normals[i]);

@@ -34,6 +34,7 @@ TEST(ObjectModel, MeshSamplesAreEvenAndFaceOutwardOnABox) {
   EXPECT_NEAR(m.diameter, std::sqrt(0.01f + 0.0036f + 0.0016f), 1e-4f);
   EXPECT_NEAR(m.sampling_radius, 0.04f * m.diameter, 1e-6f);
   ASSERT_GT(m.size(), 200u);
+  EXPECT_TRUE(m.even_sampling);
   for (size_t i = 0; i < m.size(); ++i) {
     EXPECT_NEAR(m.normals[i].norm(), 1.0f, 1e-4f);
     EXPECT_GT(m.normals[i].dot(m.points[i]), 0) << "normal " << i << " points inward";
@@ -59,6 +60,7 @@ TEST(ObjectModel, PointModelNormalsFaceOutOfTheSolidOfAConcaveBowl) {
   points_only.vertices = dense.points;
   const ObjectModel m = prepareModel(points_only, ModelSamplingParams{});
   ASSERT_GT(m.size(), 100u);
+  EXPECT_FALSE(m.even_sampling);  // a scan's density is its own
   int inner = 0, outer = 0, wrong = 0;
   const Eigen::Vector3f centre(0, 0, 0.06f);  // centre of the spherical bowl
   for (size_t i = 0; i < m.size(); ++i) {

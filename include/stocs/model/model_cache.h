@@ -69,7 +69,7 @@ const char* toString(CacheOutcome outcome);
 class ModelCache {
  public:
   /// Bumped whenever the payload layout or the preparation algorithm changes.
-  static constexpr uint32_t kFormatVersion = 2;  // 2: sample colours
+  static constexpr uint32_t kFormatVersion = 3;  // 2: sample colours; 3: even_sampling
 
   /// A cache in `directory`; an empty path disables caching.
   explicit ModelCache(std::filesystem::path directory = defaultDirectory());

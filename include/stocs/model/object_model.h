@@ -34,6 +34,10 @@ struct ObjectModel {
   /// The surface's colour at each sample (mesh.h's Colour, NaN where unknown); empty when the model
   /// file has no colour.
   std::vector<Colour> colours;
+  /// Whether the samples are even over the surface's area (a mesh's). A point model's are not: a
+  /// scan's density varies and holes stay holes, so the objective, a sum over samples, is not the
+  /// share of the visible surface explained.
+  bool even_sampling = true;
 
   size_t size() const { return points.size(); }
   bool hasColour() const { return !colours.empty(); }

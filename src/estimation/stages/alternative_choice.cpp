@@ -35,6 +35,9 @@ struct Candidate {
   std::vector<int> confirmed;
   float left_out = 0;  ///< the confirmed surface it leaves out, as a share of its own (leftOut)
   ColourAgreement colour;
+  /// The share of its samples facing the camera that the segment matches: the objective without
+  /// the model's sampling density, for a point model (ObjectModel::even_sampling); NaN for a mesh.
+  float matched_share = std::numeric_limits<float>::quiet_NaN();
   /// Signed distance of its lowest point from the plane under the object (NaN: no plane) ...
   float height = std::numeric_limits<float>::quiet_NaN();
   /// ... and the share of its surface samples that lie on the plane (within kSupportNoise).
@@ -56,24 +59,17 @@ float ranking(const Candidate& c) {
   return c.lcp.score * (1 - c.free) * (1 - c.unsupported);
 }
 
-/// The share of its samples facing the camera that the segment matches: the objective without the
-/// model's sampling density (a scanned point model with holes in one face has fewer samples there).
-float matchedShare(const Candidate& c) {
-  return c.lcp.facing > 0 ? static_cast<float>(c.lcp.matched) / static_cast<float>(c.lcp.facing)
-                          : 0.0f;
-}
-
 /// Within the floor by ranking: a turn that explains a little less of the segment but puts no
 /// handle over the table the camera sees fits as the estimator ranks poses. Or by objective alone:
 /// a screened alternative's free share is that of a pose ICP has not settled yet (a flipped box
-/// still off its face). Or as the data see it: it leaves no more of the segment unexplained and
-/// the segment matches as much of its visible surface (a turn showing a face of the model that
-/// the scan sampled sparsely).
+/// still off its face). Or, for a point model, as the data see it: it leaves no more of the segment
+/// unexplained and the segment matches as large a share of its visible samples (a turn showing a
+/// face the scan sampled sparsely; a mesh's samples are even, and fewer of them mean less surface).
 bool fits(const Candidate& c, const Candidate& instance) {
   return c.lcp.score >= kFitFloor * instance.lcp.score ||
          ranking(c) >= kFitFloor * ranking(instance) ||
          (c.unexplained <= instance.unexplained + kAlternativeTie &&
-          matchedShare(c) >= kFitFloor * matchedShare(instance));
+          c.matched_share >= kFitFloor * instance.matched_share);
 }
 
 /// Measured surface that some candidate's visible surface meets (CandidateMeasure).
@@ -124,6 +120,9 @@ class CandidateMeasure {
   /// (supportUnder; null: none).
   void operator()(Candidate& c, int region, const Plane* support) const {
     c.lcp = context_.scorer.detail(context_.model, c.pose, region);
+    if (!context_.model.even_sampling && c.lcp.facing > 0) {
+      c.matched_share = static_cast<float>(c.lcp.matched) / static_cast<float>(c.lcp.facing);
+    }
     c.unexplained = unexplained(c.pose, region);
     if (evidence_.surface) {
       compareSurface(c);
