@@ -8,6 +8,7 @@
 
 #include "stocs/estimation/pose_proximity.h"
 #include "stocs/estimation/stages/colour_agreement.h"
+#include "stocs/estimation/stages/least_constrained_slide.h"
 #include "stocs/estimation/stages/pose_covariance.h"
 #include "stocs/geometry/knn_index.h"
 #include "stocs/segmentation/support_plane.h"
@@ -23,9 +24,10 @@ const float kDistinctAngle = 15.0f * static_cast<float>(M_PI) / 180.0f;
 /// A candidate pose of one instance, refined and judged.
 struct Candidate {
   explicit Candidate(const Eigen::Isometry3f& at, float from_shift = 0)
-      : pose(at), shift(from_shift) {}
+      : pose(at), refined(at), shift(from_shift) {}
 
-  Eigen::Isometry3f pose;
+  Eigen::Isometry3f pose;     ///< where it is judged: `refined`, or slid from it (slideNearBest)
+  Eigen::Isometry3f refined;  ///< where ICP left it: the pose published
   std::optional<IcpRun> run;  ///< its refinement, once begun
   float shift = 0;            ///< of the shape alternative it came from (0: the instance itself)
   LcpDetail lcp;
@@ -84,6 +86,15 @@ constexpr int kCellPixels = 4;
 
 constexpr size_t kExplainedPoints = 300;  // segment or surface points checked, an even subsample
 
+/// A candidate is placed along a lathe's axis at the best of the places within this many steps
+/// either way ...
+constexpr int kPlacementSteps = 5;
+/// ... of this share of the diameter (up to 5% of it: the few millimetres ICP leaves a turn off).
+constexpr float kPlacementStep = 0.01f;
+/// A lathe is slid along its axis only where the axis lies at least this far (a sine: 30 degrees)
+/// out of the normal of the plane under it.
+constexpr float kSlideAlongPlane = 0.5f;
+
 /// The plane under an object is fitted to about this many measured points around it ...
 constexpr size_t kSupportPoints = 2000;
 /// ... those within this distance of it lie on it (metres: a depth sensor's noise at a metre) ...
@@ -129,6 +140,24 @@ class CandidateMeasure {
       c.colour = colourAgreement(context_.model, c.pose, *evidence_.surface, evidence_.colour);
     }
     if (support) std::tie(c.height, c.footing) = onPlane(*support, c.pose);
+  }
+
+  /// `c` moved along `axis` (model frame), within the plane under it where there is one (a can
+  /// standing on its end keeps its height), to the place within kPlacementSteps of kPlacementStep
+  /// of the diameter where the estimator's ranking is highest (bestAlong), and measured again there
+  /// if it moved.
+  void slide(Candidate& c, const Eigen::Vector3f& axis, int region, const Plane* support) const {
+    if (!evidence_.surface) return;
+    Eigen::Vector3f direction = c.pose.linear() * axis;
+    if (support) direction -= direction.dot(support->normal) * support->normal;
+    if (direction.norm() < kSlideAlongPlane) return;
+    const Eigen::Vector3f step =
+        direction.normalized() * (kPlacementStep * context_.model.diameter);
+    const Eigen::Isometry3f moved = bestAlong(context_.model, c.pose, step, kPlacementSteps,
+                                              context_.scorer, *evidence_.surface, region);
+    if (moved.translation() == c.pose.translation()) return;
+    c.pose = moved;
+    (*this)(c, region, support);
   }
 
   /// The plane the object at `pose` rests on, if any: fitted to the measured surface around it
@@ -316,7 +345,7 @@ void refine(Candidate& c, int region, int steps, const RefinementContext& contex
   const int before = c.run->iterations;
   context.icp->iterate(context.model, *c.run, steps, region, &context.scorer);
   taken += c.run->iterations - before;
-  c.pose = c.run->pose;
+  c.pose = c.refined = c.run->pose;
 }
 
 /// Sets each candidate's `unsupported`, 0 to 1: how much farther its lowest point lies from the
@@ -430,10 +459,73 @@ void addTurnsBetweenSteps(InstancePose& instance, const Candidate& first, const 
   addEquallyFitting(turns, turns[1], model, instance.ambiguous);
 }
 
+/// Whether the model is a lathe whose samples' centre lies off the middle of its length along the
+/// axis by more than the sampling radius: one end open, the other closed (a mug), so its turns end
+/// over end, which are about that centre, come out off along the axis, where ICP barely moves them.
+bool endsDiffer(const PreparedModel& model) {
+  if (!model.lathe) return false;
+  const Eigen::Vector3f& axis = model.lathe->axis;
+  float low = std::numeric_limits<float>::infinity(), high = -low;
+  for (const Eigen::Vector3f& p : model.model.points) {
+    low = std::min(low, axis.dot(p));
+    high = std::max(high, axis.dot(p));
+  }
+  const float off = axis.dot(sampleCentre(model.model)) - (low + high) / 2;
+  return std::abs(off) > model.model.sampling_radius;
+}
+
+/// Judges `candidates` (the instance first), with the share of the confirmed surface each leaves
+/// out; returns that surface.
+ConfirmedSurface judgeAll(std::vector<Candidate>& candidates, const CandidateMeasure& measure,
+                          int threads) {
+  markUnsupported(candidates);
+  ConfirmedSurface surface = measure.confirmedSurface(candidates);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    Candidate& c = candidates[k];
+    if (fits(c, candidates.front())) c.left_out = measure.leftOut(c, surface);  // else judged -1
+  }
+  judge(candidates);
+  return surface;
+}
+
+/// Candidates judged within this of the best are slid along a lathe's axis before the choice.
+constexpr float kSlideMargin = 0.1f;
+
+/// ICP barely feels a lathe's body slide along its axis, so a turn end over end (about the samples'
+/// centre, not the object's) can stop with an end in free space that a few millimetres along the
+/// axis would leave, and the free share differs by a few hundredths between places a millimetre
+/// apart: the candidates that fit and are judged near the best (kSlideMargin) are each moved along
+/// `axis` (model frame) to their best-ranked place, so all are compared at their best. Whether any
+/// moved.
+bool slideNearBest(std::vector<Candidate>& candidates, const Eigen::Vector3f& axis,
+                   const CandidateMeasure& measure, int region, const Plane* support, int threads) {
+  float best = -std::numeric_limits<float>::infinity();
+  for (const Candidate& c : candidates) best = std::max(best, c.judgement);
+  std::vector<char> near(candidates.size());
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    near[k] =
+        fits(candidates[k], candidates.front()) && candidates[k].judgement >= best - kSlideMargin;
+  }
+  bool moved = false;
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(|| : moved)
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    if (!near[k]) continue;
+    Candidate& c = candidates[k];
+    const Eigen::Vector3f before = c.pose.translation();
+    measure.slide(c, axis, region, support);
+    moved = moved || c.pose.translation() != before;
+  }
+  return moved;
+}
+
+/// Chooses among `instance` and its `alternatives`; a lathe's turns between its steps are judged
+/// about `lathe` (null: none), and candidates are slid along `axis` (null: none; slideNearBest).
 void chooseFor(InstancePose& instance, const PreparedModel& model,
                const std::vector<const ShapeAlternative*>& alternatives, const LatheAxis* lathe,
-               const RefinementContext& context, const CandidateMeasure& measure,
-               const PoseProximity& proximity, int threads, long& steps) {
+               const Eigen::Vector3f* axis, const RefinementContext& context,
+               const CandidateMeasure& measure, const PoseProximity& proximity, int threads,
+               long& steps) {
   std::vector<Candidate> candidates{Candidate(instance.pose)};
   for (const ShapeAlternative* a : alternatives) {
     candidates.emplace_back(instance.pose * a->motion, a->shift);
@@ -453,24 +545,23 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   const Plane* support = plane ? &*plane : nullptr;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t k = 0; k < candidates.size(); ++k) measure(candidates[k], instance.region, support);
-  markUnsupported(candidates);
-  const ConfirmedSurface surface = measure.confirmedSurface(candidates);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t k = 0; k < candidates.size(); ++k) {
-    Candidate& c = candidates[k];
-    if (fits(c, candidates.front())) c.left_out = measure.leftOut(c, surface);  // else judged -1
+
+  ConfirmedSurface surface = judgeAll(candidates, measure, threads);
+  if (axis && slideNearBest(candidates, *axis, measure, instance.region, support, threads)) {
+    surface = judgeAll(candidates, measure, threads);
   }
-  judge(candidates);
   size_t kept = chosen(candidates);
   if (kept > 0 && context.icp) {
     // The rest of the steps can take it elsewhere (into free space): judged again there, it must
     // still be better than the instance.
-    refine(candidates[kept], instance.region, context.icp->params().iterations, context, taken);
-    measure(candidates[kept], instance.region, support);
+    Candidate& turn = candidates[kept];
+    refine(turn, instance.region, context.icp->params().iterations, context, taken);
+    measure(turn, instance.region, support);
+    if (axis) measure.slide(turn, *axis, instance.region, support);
     markUnsupported(candidates);
-    candidates[kept].left_out = measure.leftOut(candidates[kept], surface);
+    turn.left_out = measure.leftOut(turn, surface);
     judge(candidates);
-    if (candidates[kept].judgement <= candidates.front().judgement) kept = 0;
+    if (turn.judgement <= candidates.front().judgement) kept = 0;
   }
   steps += taken;
   const Candidate& best = candidates[kept];
@@ -482,9 +573,11 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   }
   const bool turned = kept > 0;  // an alternative, not the instance itself
   if (turned) {
-    instance.pose = best.pose;
-    instance.lcp = best.lcp;
-    instance.score = best.lcp.score;
+    instance.pose = best.refined;
+    instance.lcp = best.refined.isApprox(best.pose)
+                       ? best.lcp
+                       : context.scorer.detail(context.model, best.refined, instance.region);
+    instance.score = instance.lcp.score;
     instance.refined = true;
   }
   if (turned || !instance.ambiguous.empty()) {
@@ -505,9 +598,11 @@ void chooseAmongAlternatives(std::vector<InstancePose>& instances, const Prepare
   if (alternatives.empty()) return;
   const CandidateMeasure measure(segment, context, evidence);
   const LatheAxis* lathe = turnsBetweenSteps(model) ? &*model.lathe : nullptr;
+  const Eigen::Vector3f* axis = endsDiffer(model) ? &model.lathe->axis : nullptr;
   const PoseProximity proximity(model.model);
   for (InstancePose& instance : instances) {
-    chooseFor(instance, model, alternatives, lathe, context, measure, proximity, threads, steps);
+    chooseFor(instance, model, alternatives, lathe, axis, context, measure, proximity, threads,
+              steps);
   }
 }
 

@@ -30,7 +30,10 @@ constexpr float kAlternativeTie = 0.03f;
 /// the distinct poses within kAlternativeTie of the kept one, support left out (a prior, not
 /// data), are named in InstancePose::ambiguous,
 /// and its covariance spans them. A lathe's body turns by any angle, so the kept pose turned
-/// between its steps about the model's lathe axis is judged and named alike. Adds the ICP steps
+/// between its steps about the model's lathe axis is judged and named alike. A lathe whose ends
+/// differ (a mug) has the candidates judged near the best slid along its axis, where ICP barely
+/// moves them, to where the estimator's ranking is highest (least_constrained_slide.h), and judged
+/// there. Adds the ICP steps
 /// taken to `steps`.
 void chooseAmongAlternatives(std::vector<InstancePose>& instances, const PreparedModel& model,
                              const SoftSegment& segment, const RefinementContext& context,

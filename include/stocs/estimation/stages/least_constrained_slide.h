@@ -4,7 +4,7 @@
 // millimetres off along it. The estimator's ranking (the objective times the share of the visible
 // surface not in free space) does feel it: surface pushed past the object's measured end lies in
 // front of what the sensor sees behind. This search moves the pose along its least constrained
-// translation and keeps the best-ranked place.
+// translation and keeps the best-ranked place; bestAlong searches a given direction.
 
 #include <Eigen/Geometry>
 
@@ -26,6 +26,15 @@ constexpr float kSlideGain = 1.01f;
 /// standard deviation: where the data fixes the pose better, a step would follow the ranking's
 /// noise (a block seen on three faces moved 2.7 mm).
 constexpr float kSlideLoose = 0.5f;
+
+/// Of `pose` moved by k `step` for |k| <= `steps` (camera frame), the one ranked highest by
+/// `scorer`'s objective on `region` times the share of the visible surface that `surface` does not
+/// find in free space, where it ranks above `pose` itself by kSlideGain; else `pose`. A search of
+/// the whole range, for poses compared with one another at their best places (a climb stops at the
+/// ranking's first dip).
+Eigen::Isometry3f bestAlong(const ObjectModel& model, const Eigen::Isometry3f& pose,
+                            const Eigen::Vector3f& step, int steps, const LcpScorer& scorer,
+                            const FreeSpaceCheck& surface, int region = -1);
 
 /// `pose` moved along the translation `covariance` constrains least with the rotation held (the
 /// weakest direction of its inverse's translational block, camera frame) in steps of kSlideStep
