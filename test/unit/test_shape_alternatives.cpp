@@ -15,6 +15,7 @@
 #include "stocs/estimation/stages/lcp_scorer.h"
 #include "stocs/estimation/stages/least_constrained_slide.h"
 #include "stocs/estimation/stages/soft_segment.h"
+#include "stocs/eval/pose_metrics.h"
 #include "stocs/model/lathe_axis.h"
 #include "stocs/sim/object_catalogue.h"
 #include "stocs/sim/shape_meshes.h"
@@ -167,9 +168,9 @@ struct OnTable {
 
   /// Mean distance of the model's samples under `pose` to where the truth puts them (ADD).
   float add(const PreparedModel& model, const Eigen::Isometry3f& pose) const {
-    double sum = 0;
-    for (const Eigen::Vector3f& p : model.model.points) sum += (pose * p - truth * p).norm();
-    return static_cast<float>(sum / static_cast<double>(model.model.size()));
+    return static_cast<float>(addError(
+        model.model.points, {pose.linear().cast<double>(), pose.translation().cast<double>()},
+        {truth.linear().cast<double>(), truth.translation().cast<double>()}));
   }
 };
 

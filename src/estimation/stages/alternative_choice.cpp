@@ -145,19 +145,20 @@ class CandidateMeasure {
   /// `c` moved along `axis` (model frame), within the plane under it where there is one (a can
   /// standing on its end keeps its height), to the place within kPlacementSteps of kPlacementStep
   /// of the diameter where the estimator's ranking is highest (bestAlong), and measured again there
-  /// if it moved.
-  void slide(Candidate& c, const Eigen::Vector3f& axis, int region, const Plane* support) const {
-    if (!evidence_.surface) return;
+  /// if it moved. Whether it moved.
+  bool slide(Candidate& c, const Eigen::Vector3f& axis, int region, const Plane* support) const {
+    if (!evidence_.surface) return false;
     Eigen::Vector3f direction = c.pose.linear() * axis;
     if (support) direction -= direction.dot(support->normal) * support->normal;
-    if (direction.norm() < kSlideAlongPlane) return;
+    if (direction.norm() < kSlideAlongPlane) return false;
     const Eigen::Vector3f step =
         direction.normalized() * (kPlacementStep * context_.model.diameter);
     const Eigen::Isometry3f moved = bestAlong(context_.model, c.pose, step, kPlacementSteps,
                                               context_.scorer, *evidence_.surface, region);
-    if (moved.translation() == c.pose.translation()) return;
+    if (moved.translation() == c.pose.translation()) return false;
     c.pose = moved;
     (*this)(c, region, support);
+    return true;
   }
 
   /// The plane the object at `pose` rests on, if any: fitted to the measured surface around it
@@ -510,11 +511,7 @@ bool slideNearBest(std::vector<Candidate>& candidates, const Eigen::Vector3f& ax
   bool moved = false;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(|| : moved)
   for (size_t k = 0; k < candidates.size(); ++k) {
-    if (!near[k]) continue;
-    Candidate& c = candidates[k];
-    const Eigen::Vector3f before = c.pose.translation();
-    measure.slide(c, axis, region, support);
-    moved = moved || c.pose.translation() != before;
+    if (near[k]) moved = measure.slide(candidates[k], axis, region, support) || moved;
   }
   return moved;
 }
