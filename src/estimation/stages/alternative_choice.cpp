@@ -407,14 +407,17 @@ float withoutSupport(const Candidate& c) {
 }
 
 /// Adds to `out` the candidates that fit as well as `best` (without the support: a track keeps the
-/// turn it follows among them), as motions from it: each a pose of its
-/// own (not `best` again after refinement, not a declared symmetry of it, not one listed before).
+/// turn it follows among them; judged `reference` where that is lower), as motions from it: each a
+/// pose of its own (not `best` again after refinement, not a declared symmetry of it, not one
+/// listed before).
 void addEquallyFitting(const std::vector<Candidate>& candidates, const Candidate& best,
-                       const PreparedModel& model, std::vector<ShapeAlternative>& out) {
+                       const PreparedModel& model, std::vector<ShapeAlternative>& out,
+                       float reference = std::numeric_limits<float>::infinity()) {
   const Eigen::Vector3f centre = sampleCentre(model.model);
   const float distance = model.model.sampling_radius;
+  const float judged = std::min(withoutSupport(best), reference);
   for (const Candidate& c : candidates) {
-    if (withoutSupport(best) - withoutSupport(c) >= kAlternativeTie) continue;
+    if (judged - withoutSupport(c) >= kAlternativeTie) continue;
     const ShapeAlternative a = motionBetween(best.pose, c);
     if (a.angle < kDistinctAngle) continue;  // the same pose
     if (isSymmetry(a.motion, model.symmetries, centre, kDistinctAngle, distance)) continue;
@@ -548,7 +551,11 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     surface = judgeAll(candidates, measure, threads);
   }
   size_t kept = chosen(candidates);
+  // The kept turn as judged beside the others, which have had only the screening steps: those
+  // within the tie of it there fit as well, whatever its own last steps add.
+  float screened = std::numeric_limits<float>::infinity();
   if (kept > 0 && context.icp) {
+    screened = withoutSupport(candidates[kept]);
     // The rest of the steps can take it elsewhere (into free space): judged again there, it must
     // still be better than the instance.
     Candidate& turn = candidates[kept];
@@ -563,7 +570,8 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
   steps += taken;
   const Candidate& best = candidates[kept];
   instance.ambiguous.clear();
-  addEquallyFitting(candidates, best, model, instance.ambiguous);
+  addEquallyFitting(candidates, best, model, instance.ambiguous,
+                    kept > 0 ? screened : std::numeric_limits<float>::infinity());
   if (lathe) {
     addTurnsBetweenSteps(instance, candidates.front(), best, *lathe, model, measure, surface,
                          support, threads);
