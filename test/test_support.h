@@ -72,6 +72,10 @@ std::string fileBytes(const std::filesystem::path& file);
 /// Every file below `root`, relative to it, with its bytes: for comparing generated datasets.
 std::map<std::string, std::string> treeFiles(const std::filesystem::path& root);
 
+/// Rows of a CSV file (no quoted commas, as the tools write them) as column name -> value; the
+/// first line names the columns.
+std::vector<std::map<std::string, std::string>> readCsv(const std::filesystem::path& file);
+
 /// Runs a shell command, returning its exit code and capturing stdout and stderr in `output`.
 int runCommand(const std::string& command, std::string& output);
 

@@ -3,10 +3,8 @@
 // generated textured scenes names the turns that fit as well as a pose wrong by ADD.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 
 #include "stocs/io/mesh_io.h"
 #include "test_support.h"
@@ -99,22 +97,18 @@ TEST(CliColour, EstimateNamesTheTurnsThatFitAsWellAsAPoseWrongByAdd) {
                              out),
             0)
       << out;
-  std::ifstream csv(targets);
-  std::string line;
-  std::getline(csv, line);  // header: results,dataset,scene_id,im_id,obj_id,...
   int rows = 0;
-  while (std::getline(csv, line)) {
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
-    ASSERT_GT(f.size(), 17u) << line;
-    if (f[2] != "1" || f[4] != "7") continue;  // eval lists every target; one was estimated
+  for (const auto& target : test::readCsv(targets)) {
+    // eval lists every target of the dataset; one object of one scene was estimated
+    if (target.at("scene_id") != "1" || target.at("obj_id") != "7") continue;
     ++rows;
-    const std::string head = "scene 1 image " + f[3] + " object 7: ";
+    const std::string head = "scene 1 image " + target.at("im_id") + " object 7: ";
     const size_t at = log.find(head);
     ASSERT_NE(at, std::string::npos) << log;
     const std::string pose = log.substr(at, log.find('\n', at) - at);
-    EXPECT_TRUE(f[17] == "1" || pose.find("fits as well turned by") != std::string::npos) << pose;
+    EXPECT_TRUE(target.at("add_or_adds_success") == "1" ||
+                pose.find("fits as well turned by") != std::string::npos)
+        << pose;
   }
   EXPECT_EQ(rows, 2);
 }

@@ -10,7 +10,6 @@
 #include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "stocs/io/bop_dataset.h"
 #include "stocs/io/bop_results.h"
@@ -23,20 +22,12 @@ namespace fs = std::filesystem;
 
 const std::string kTool = STOCS_TOOL_PATH;
 
-/// The column `column` of every row of a CSV file.
+/// The column `column` of every row of a CSV file ("" where a row has none).
 std::vector<std::string> csvColumn(const fs::path& file, const std::string& column) {
-  std::ifstream in(file);
   std::vector<std::string> values;
-  int index = -1;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    if (index < 0) {
-      index = static_cast<int>(std::find(cells.begin(), cells.end(), column) - cells.begin());
-      continue;
-    }
-    values.push_back(index < static_cast<int>(cells.size()) ? cells[index] : "");
+  for (const auto& row : test::readCsv(file)) {
+    const auto cell = row.find(column);
+    values.push_back(cell == row.end() ? "" : cell->second);
   }
   return values;
 }

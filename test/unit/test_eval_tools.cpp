@@ -21,26 +21,6 @@ namespace {
 
 const std::string kTool = STOCS_TOOL_PATH;
 
-/// Rows of a CSV file as column name -> value.
-std::vector<std::map<std::string, std::string>> readCsv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> names;
-  std::vector<std::map<std::string, std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) cells.push_back(cell);
-    if (names.empty()) {
-      names = cells;
-      continue;
-    }
-    std::map<std::string, std::string> row;
-    for (size_t i = 0; i < cells.size() && i < names.size(); ++i) row[names[i]] = cells[i];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 double number(const std::map<std::string, std::string>& row, const std::string& column) {
   return std::stod(row.at(column));
 }
@@ -98,7 +78,7 @@ TEST_F(EvalCliTest, KnownPosesGiveExactMetrics) {
             std::string::npos)
       << out;
 
-  const auto targets = readCsv(root_ / "targets.csv");
+  const auto targets = test::readCsv(root_ / "targets.csv");
   ASSERT_EQ(targets.size(), 3u);
   // The exact pose: every error 0.
   for (const char* column : {"add_mm", "adds_mm", "mssd_mm", "rotation_deg", "translation_cm"}) {
@@ -117,7 +97,7 @@ TEST_F(EvalCliTest, KnownPosesGiveExactMetrics) {
   EXPECT_NEAR(number(targets[2], "translation_cm"), 0, 1e-4);
   EXPECT_EQ(targets[2].at("rt_success"), "0");
 
-  const auto summary = readCsv(root_ / "summary.csv");
+  const auto summary = test::readCsv(root_ / "summary.csv");
   ASSERT_EQ(summary.size(), 7u);  // object and dataset rows per results file, then overall
   EXPECT_EQ(summary[1].at("object"), "all");
   EXPECT_NEAR(number(summary[1], "adds_auc"), 1, 1e-5);
@@ -137,7 +117,7 @@ TEST_F(EvalCliTest, MissingEstimateIsAFailure) {
                        out),
       0)
       << out;
-  const auto summary = readCsv(root_ / "s.csv");
+  const auto summary = test::readCsv(root_ / "s.csv");
   ASSERT_FALSE(summary.empty());
   EXPECT_EQ(summary[0].at("found"), "0");
   EXPECT_EQ(number(summary[0], "adds_auc"), 0);
@@ -184,7 +164,7 @@ TEST_F(EvalCliTest, EstimateRecordsEveryAttemptedObject) {
                              out),
             0)
       << out;
-  const auto rows = readCsv(root_ / "objects.csv");
+  const auto rows = test::readCsv(root_ / "objects.csv");
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].at("obj_id"), "1");
   EXPECT_EQ(rows[0].at("found"), "1");
@@ -238,7 +218,7 @@ TEST_F(EvalCliTest, EstimateWritesTheConfidenceAsScoreAndLeavesRejectedPosesOut)
       << out;
   const std::vector<BopResult> all = readBopResults(root_ / "all.csv");
   ASSERT_EQ(all.size(), 1u);
-  const double confidence = number(readCsv(root_ / "objects.csv").at(0), "confidence");
+  const double confidence = number(test::readCsv(root_ / "objects.csv").at(0), "confidence");
   EXPECT_NEAR(all[0].score, confidence, 1e-4);
   EXPECT_NE(out.find("confidence "), std::string::npos) << out;
   // Above the pose's confidence, the pose is rejected: reported with its reason, not written.
@@ -367,7 +347,7 @@ using CsvRows = std::vector<std::map<std::string, std::string>>;
 /// of medians.
 void expectFewestBasesAtEqualAccuracy(const std::filesystem::path& out, const CsvRows& summary,
                                       const CsvRows& bases) {
-  const auto equal = readCsv(out / "equal_accuracy.csv");
+  const auto equal = test::readCsv(out / "equal_accuracy.csv");
   ASSERT_EQ(equal.size(), summary.size() * (summary.size() - 1));
   for (const auto& row : equal) {
     const auto other = std::find_if(summary.begin(), summary.end(), [&](const auto& s) {
@@ -415,7 +395,7 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   EXPECT_NE(log.find("bench [12/12] stocs-hard on data/real, 30 bases: ok"), std::string::npos)
       << log;
 
-  const auto summary = readCsv(out / "summary.csv");
+  const auto summary = test::readCsv(out / "summary.csv");
   ASSERT_EQ(summary.size(), 2u) << "one row per method for the single input";
   for (const auto& row : summary) {
     EXPECT_EQ(row.at("dataset"), "data");
@@ -443,7 +423,7 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
   const BopGtInstance truth = BopDataset(root_ / "data").sceneGroundTruth(0).at(0).at(0);
   const HandMetrics expected = handMetrics(
       loadMesh((root_ / "data" / "models" / "obj_000001.ply").string(), 0.001f), written[0], truth);
-  const auto targets = readCsv(out / "targets.csv");
+  const auto targets = test::readCsv(out / "targets.csv");
   ASSERT_EQ(targets.size(), 2u);
   EXPECT_EQ(targets[0].at("method"), "stocs");
   EXPECT_NEAR(number(targets[0], "add_mm"), expected.add_mm, 6e-4);
@@ -456,14 +436,14 @@ TEST_F(EvalCliTest, BenchRunsMethodsSweepsAndPlots) {
 
   // The sweeps: every method at every value. The map holds 0.9 everywhere on the object, so a
   // threshold of 0.95 leaves no segment and no pose.
-  const auto thresholds = readCsv(out / "threshold_sweep.csv");
+  const auto thresholds = test::readCsv(out / "threshold_sweep.csv");
   ASSERT_EQ(thresholds.size(), 4u);
   EXPECT_EQ(thresholds[0].at("threshold"), "0.5");
   EXPECT_EQ(thresholds[0].at("found"), "1");
   EXPECT_EQ(thresholds[1].at("threshold"), "0.95");
   EXPECT_EQ(thresholds[1].at("found"), "0");
-  EXPECT_EQ(readCsv(out / "budget_sweep.csv").size(), 2u);
-  const auto bases = readCsv(out / "bases_sweep.csv");
+  EXPECT_EQ(test::readCsv(out / "budget_sweep.csv").size(), 2u);
+  const auto bases = test::readCsv(out / "bases_sweep.csv");
   ASSERT_EQ(bases.size(), 4u);
   EXPECT_EQ(bases[0].at("bases"), "5");  // ascending, whatever the order given
   EXPECT_EQ(bases[1].at("bases"), "30");
@@ -508,7 +488,7 @@ TEST_F(EvalCliTest, BenchSurvivesAFailingRun) {
             0)
       << log;
   EXPECT_NE(log.find("stocs on data/real: FAILED: exit code 2"), std::string::npos) << log;
-  const auto summary = readCsv(out / "summary.csv");
+  const auto summary = test::readCsv(out / "summary.csv");
   ASSERT_EQ(summary.size(), 2u);
   EXPECT_EQ(summary[0].at("failed_runs"), "1");
   EXPECT_EQ(summary[0].at("found"), "0");
@@ -527,13 +507,13 @@ TEST_F(EvalCliTest, BenchSweepsOnlyTheSweepMethods) {
       << log;
   EXPECT_NE(log.find("bench [4/4] stocs-hard on data/real, 10 bases: ok"), std::string::npos)
       << log;
-  const auto thresholds = readCsv(out / "threshold_sweep.csv");
+  const auto thresholds = test::readCsv(out / "threshold_sweep.csv");
   ASSERT_EQ(thresholds.size(), 1u);
   EXPECT_EQ(thresholds[0].at("method"), "stocs-hard");
-  const auto bases = readCsv(out / "bases_sweep.csv");
+  const auto bases = test::readCsv(out / "bases_sweep.csv");
   ASSERT_EQ(bases.size(), 1u);
   EXPECT_EQ(bases[0].at("method"), "stocs-hard");
-  const auto equal = readCsv(out / "equal_accuracy.csv");
+  const auto equal = test::readCsv(out / "equal_accuracy.csv");
   ASSERT_EQ(equal.size(), 1u);
   EXPECT_EQ(equal[0].at("method"), "stocs-hard");
   EXPECT_EQ(equal[0].at("against"), "stocs");
@@ -550,7 +530,7 @@ TEST_F(EvalCliTest, BenchKillsARunPastItsTimeout) {
       << log;
   EXPECT_NE(log.find("stocs on data/real: FAILED: timed out (limit 0.01 s)"), std::string::npos)
       << log;
-  const auto summary = readCsv(out / "summary.csv");
+  const auto summary = test::readCsv(out / "summary.csv");
   ASSERT_EQ(summary.size(), 1u);
   EXPECT_EQ(summary[0].at("failed_runs"), "1");
 }
