@@ -410,8 +410,9 @@ float withoutSupport(const Candidate& c) {
 void addNamed(const ShapeAlternative& a, const PreparedModel& model,
               std::vector<ShapeAlternative>& out) {
   if (a.angle < kDistinctAngle) return;  // the same pose
-  if (isSymmetry(a.motion, model.symmetries, sampleCentre(model.model), kDistinctAngle,
-                 model.model.sampling_radius)) {
+  // The samples' centre (a pass over them) only where symmetries are declared.
+  if (!model.symmetries.empty() && isSymmetry(a.motion, model.symmetries, sampleCentre(model.model),
+                                              kDistinctAngle, model.model.sampling_radius)) {
     return;
   }
   const bool listed = std::any_of(out.begin(), out.end(), [&](const ShapeAlternative& o) {
@@ -593,13 +594,15 @@ void chooseFor(InstancePose& instance, const PreparedModel& model,
     markUnsupported(candidates);
     turn.left_out = measure.leftOut(turn, surface);
     judge(candidates);
-    if (turn.judgement <= candidates.front().judgement) kept = 0;
+    if (turn.judgement <= candidates.front().judgement) {
+      kept = 0;
+      screened = std::numeric_limits<float>::infinity();  // the instance is judged as it is
+    }
   }
   steps += taken;
   const Candidate& best = candidates[kept];
   instance.ambiguous.clear();
-  addEquallyFitting(candidates, best, model, instance.ambiguous,
-                    kept > 0 ? screened : std::numeric_limits<float>::infinity());
+  addEquallyFitting(candidates, best, model, instance.ambiguous, screened);
   addExactTurns(candidates, alternatives, model, instance.ambiguous);
   if (lathe) {
     addTurnsBetweenSteps(instance, candidates.front(), best, *lathe, model, measure, surface,
